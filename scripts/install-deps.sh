@@ -1,0 +1,36 @@
+#!/usr/bin/env bash
+# Installs the Debian packages the project builds and tests with; skips what is present.
+# Idempotent: safe to run before every build (make does).
+set -euo pipefail
+
+packages=(
+  cmake g++ make
+  libmujoco-dev libqhull-dev      # physics (MuJoCo's CMake config needs qhull)
+  libeigen3-dev                   # linear algebra
+  libyaml-cpp-dev                 # scenario and parameter files
+  libcli11-dev                    # command line
+  nlohmann-json3-dev              # summary.json, bench JSON
+  libgtest-dev                    # tests
+  libbenchmark-dev                # benchmarks
+)
+if [ "${BIPED_WITH_REPORT_DEPS:-0}" = 1 ]; then
+  packages+=(ffmpeg chromium nodejs npm)
+fi
+
+missing=()
+for p in "${packages[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'install ok installed'; then
+    missing+=("$p")
+  fi
+done
+[ ${#missing[@]} -eq 0 ] && exit 0
+
+echo "install-deps: installing ${missing[*]}"
+sudo=""
+if [ "$(id -u)" -ne 0 ]; then
+  command -v sudo >/dev/null || { echo "install-deps: need root (or sudo) to install: ${missing[*]}" >&2; exit 1; }
+  sudo="sudo"
+fi
+export DEBIAN_FRONTEND=noninteractive
+$sudo apt-get update -qq
+$sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"

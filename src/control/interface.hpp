@@ -1,0 +1,63 @@
+#pragma once
+// What crosses the boundary between the controller and the robot (or the simulator).
+// The controller sees SensorData only, never the simulator's state.
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <array>
+
+#include "model/robot_model.hpp"
+
+namespace biped {
+
+// A 6-axis wrench. For the foot F/T sensors: the wrench the sole exerts on the ankle side,
+// expressed in the sensor frame (standing still, force.z() > 0 is the load carried).
+struct Wrench {
+  Eigen::Vector3d force = Eigen::Vector3d::Zero();
+  Eigen::Vector3d torque = Eigen::Vector3d::Zero();
+};
+
+struct SensorData {
+  double time = 0.0;                // [s] since the start of the run
+  Eigen::VectorXd joint_position;   // link-side encoders [rad], in RobotModel::joints() order
+  Eigen::Quaterniond imu_orientation = Eigen::Quaterniond::Identity();  // IMU frame in the world
+  Eigen::Vector3d imu_angular_rate = Eigen::Vector3d::Zero();           // [rad/s], IMU frame
+  Eigen::Vector3d imu_acceleration = Eigen::Vector3d::Zero();           // specific force [m/s²], IMU frame
+  std::array<Wrench, 2> foot_wrench;                                    // indexed by Side
+
+  explicit SensorData(int num_joints = 0) : joint_position(Eigen::VectorXd::Zero(num_joints)) {}
+};
+
+// Joint position set-points, in RobotModel::joints() order.
+struct JointCommand {
+  Eigen::VectorXd position;
+  explicit JointCommand(int num_joints = 0) : position(Eigen::VectorXd::Zero(num_joints)) {}
+};
+
+// The "joystick": desired walking velocity in the robot's heading frame.
+struct WalkCommand {
+  double vx = 0.0;     // forward [m/s]
+  double vy = 0.0;     // to the left [m/s]
+  double omega = 0.0;  // turning rate [rad/s]
+  bool stop = false;   // come to a standstill with both feet side by side
+};
+
+// What the controller reports about itself each cycle (for logs and for the caller's safety logic).
+struct ControllerStatus {
+  const char* state = "init";   // FSM state name, e.g. "standing", "walking", "safe_stop"
+  bool fault = false;           // a sensor fault was detected; set-points are held safe
+  const char* fault_reason = "";
+  std::array<Wrench, 2> desired_wrench;  // contact wrench the controller aims for, per foot
+  int steps_completed = 0;
+};
+
+class Controller {
+ public:
+  virtual ~Controller() = default;
+  // Called once with the first sensor reading, before the first step().
+  virtual void reset(const SensorData& first) = 0;
+  // One control cycle: never allocates, never throws, never writes NaN into `out`.
+  virtual void step(const SensorData& sensors, const WalkCommand& command, JointCommand& out) = 0;
+  virtual const ControllerStatus& status() const = 0;
+};
+
+}  // namespace biped

@@ -1,0 +1,38 @@
+#include "control/sensor_check.hpp"
+
+#include <cmath>
+
+namespace biped {
+namespace {
+
+bool within(const Eigen::Vector3d& v, double bound) {
+  return v.allFinite() && v.cwiseAbs().maxCoeff() <= bound;
+}
+
+}  // namespace
+
+const char* check_sensors(const RobotModel& model, const SensorLimits& limits, const SensorData& s) {
+  if (!std::isfinite(s.time)) return "time";
+  const auto& joints = model.joints();
+  for (int i = 0; i < model.num_joints(); ++i) {
+    const double q = s.joint_position[i];
+    if (!std::isfinite(q) || q < joints[i].lower - limits.encoder_margin ||
+        q > joints[i].upper + limits.encoder_margin) {
+      return "joint encoder";
+    }
+  }
+  if (!s.imu_orientation.coeffs().allFinite() || std::abs(s.imu_orientation.norm() - 1.0) > 1e-3) {
+    return "imu orientation";
+  }
+  if (!within(s.imu_angular_rate, limits.max_angular_rate)) return "imu angular rate";
+  if (!within(s.imu_acceleration, limits.max_acceleration)) return "imu acceleration";
+  for (Side side : kSides) {
+    const Wrench& w = s.foot_wrench[index_of(side)];
+    if (!within(w.force, limits.max_force) || !within(w.torque, limits.max_torque)) {
+      return side == Side::Left ? "left F/T sensor" : "right F/T sensor";
+    }
+  }
+  return nullptr;
+}
+
+}  // namespace biped

@@ -1,0 +1,18 @@
+#pragma once
+// Plausibility check of one sensor reading: every value finite and inside its physical range.
+#include "control/interface.hpp"
+
+namespace biped {
+
+struct SensorLimits {
+  double max_force = 5000.0;          // [N] per F/T axis
+  double max_torque = 500.0;          // [N·m] per F/T axis
+  double max_angular_rate = 20.0;     // [rad/s]
+  double max_acceleration = 160.0;    // [m/s²] (16 g)
+  double encoder_margin = 0.05;       // [rad] tolerated beyond the hard joint limits
+};
+
+// Returns nullptr when the reading is plausible, else a static string naming the faulty signal.
+const char* check_sensors(const RobotModel& model, const SensorLimits& limits, const SensorData& s);
+
+}  // namespace biped

@@ -1,0 +1,155 @@
+#include "io/robot_config.hpp"
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+
+#include "io/yaml_reader.hpp"
+
+namespace fs = std::filesystem;
+
+namespace biped {
+namespace {
+
+constexpr double kDeg = M_PI / 180.0;
+
+std::string resolve(const std::string& path, const std::string& relative_to_file) {
+  const fs::path p(path);
+  if (p.is_absolute()) return p.string();
+  return (fs::path(relative_to_file).parent_path() / p).lexically_normal().string();
+}
+
+void read_simulation(const YamlReader& r, const YAML::Node& sim, SimulationParams& p) {
+  r.expect_keys(sim, "simulation", {"timestep", "control_period", "ground_friction"});
+  if (!sim) return;
+  p.world.timestep = r.positive_or(sim, "simulation", "timestep", p.world.timestep);
+  p.control_period = r.positive_or(sim, "simulation", "control_period", p.control_period);
+  p.world.ground_friction = r.positive_or(sim, "simulation", "ground_friction", p.world.ground_friction);
+  const double ratio = p.control_period / p.world.timestep;
+  if (std::abs(ratio - std::round(ratio)) > 1e-9 || ratio < 0.5) {
+    r.fail(sim["control_period"] ? sim["control_period"] : sim, "simulation.control_period",
+           "must be a whole multiple of simulation.timestep");
+  }
+}
+
+void read_controller(const YamlReader& r, const YAML::Node& c, ControllerConfig& p) {
+  r.expect_keys(c, "controller", {"model", "stabilizer", "ramp_time", "software_limit_margin_deg"});
+  if (!c) return;
+  if (c["model"]) {
+    p.model_path = resolve(r.text(c, "controller", "model"), r.file());
+    if (!fs::exists(p.model_path)) r.fail(c["model"], "controller.model", "no such file: " + p.model_path);
+  }
+  p.stabilizer = r.boolean_or(c, "controller", "stabilizer", p.stabilizer);
+  p.standing.ramp_time = r.non_negative_or(c, "controller", "ramp_time", p.standing.ramp_time);
+  p.software_limit_margin_rad =
+      r.non_negative_or(c, "controller", "software_limit_margin_deg", p.software_limit_margin_rad / kDeg) * kDeg;
+}
+
+void read_robot_file(const std::string& file, RunConfig& config) {
+  const YAML::Node root = load_yaml_file(file);
+  const YamlReader r(file);
+  r.expect_keys(root, "", {"model", "simulation", "drives", "encoders", "sensor_noise", "controller"});
+  config.sim.world.robot_mjcf = resolve(r.text(root, "", "model"), file);
+  if (!fs::exists(config.sim.world.robot_mjcf)) {
+    r.fail(root["model"], "model", "no such file: " + config.sim.world.robot_mjcf);
+  }
+  read_simulation(r, r.mapping(root, "", "simulation"), config.sim);
+
+  const YAML::Node drives = r.mapping(root, "", "drives");
+  r.expect_keys(drives, "drives", {"bandwidth_hz", "damping_ratio"});
+  if (drives) {
+    config.sim.drives.bandwidth_hz = r.positive_or(drives, "drives", "bandwidth_hz", config.sim.drives.bandwidth_hz);
+    config.sim.drives.damping_ratio = r.positive_or(drives, "drives", "damping_ratio", config.sim.drives.damping_ratio);
+  }
+
+  const YAML::Node encoders = r.mapping(root, "", "encoders");
+  r.expect_keys(encoders, "encoders", {"bits", "bits_of"});
+  if (encoders) {
+    config.sim.encoder_bits = static_cast<int>(r.integer_or(encoders, "encoders", "bits", config.sim.encoder_bits));
+    const YAML::Node per_joint = r.mapping(encoders, "encoders", "bits_of");
+    if (per_joint) {
+      for (const auto& entry : per_joint) {
+        const std::string joint = entry.first.Scalar();
+        config.sim.encoder_bits_of[joint] = static_cast<int>(r.integer_or(per_joint, "encoders.bits_of", joint.c_str(), 16));
+      }
+    }
+  }
+
+  const YAML::Node noise = r.mapping(root, "", "sensor_noise");
+  r.expect_keys(noise, "sensor_noise",
+                {"imu_orientation_noise_deg", "imu_orientation_bias_deg", "gyro_noise_rad_s", "gyro_bias_rad_s",
+                 "accel_noise_m_s2", "accel_bias_m_s2", "ft_force_noise_n", "ft_force_bias_n", "ft_torque_noise_nm",
+                 "ft_torque_bias_nm"});
+  if (noise) {
+    SensorNoiseParams& n = config.sim.noise_levels;
+    const char* w = "sensor_noise";
+    n.imu_orientation_noise_rad = r.non_negative_or(noise, w, "imu_orientation_noise_deg", n.imu_orientation_noise_rad / kDeg) * kDeg;
+    n.imu_orientation_bias_rad = r.non_negative_or(noise, w, "imu_orientation_bias_deg", n.imu_orientation_bias_rad / kDeg) * kDeg;
+    n.gyro_noise_rad_s = r.non_negative_or(noise, w, "gyro_noise_rad_s", n.gyro_noise_rad_s);
+    n.gyro_bias_rad_s = r.non_negative_or(noise, w, "gyro_bias_rad_s", n.gyro_bias_rad_s);
+    n.accel_noise_m_s2 = r.non_negative_or(noise, w, "accel_noise_m_s2", n.accel_noise_m_s2);
+    n.accel_bias_m_s2 = r.non_negative_or(noise, w, "accel_bias_m_s2", n.accel_bias_m_s2);
+    n.ft_force_noise_n = r.non_negative_or(noise, w, "ft_force_noise_n", n.ft_force_noise_n);
+    n.ft_force_bias_n = r.non_negative_or(noise, w, "ft_force_bias_n", n.ft_force_bias_n);
+    n.ft_torque_noise_nm = r.non_negative_or(noise, w, "ft_torque_noise_nm", n.ft_torque_noise_nm);
+    n.ft_torque_bias_nm = r.non_negative_or(noise, w, "ft_torque_bias_nm", n.ft_torque_bias_nm);
+  }
+  read_controller(r, r.mapping(root, "", "controller"), config.controller);
+}
+
+}  // namespace
+
+std::string data_directory() {
+  if (const char* env = std::getenv("BIPED_DATA_DIR"); env && *env) return env;
+  return BIPED_SOURCE_DIR;
+}
+
+std::vector<std::string> known_robots() {
+  std::vector<std::string> names;
+  const fs::path dir = fs::path(data_directory()) / "config" / "robots";
+  std::error_code ec;
+  for (const auto& entry : fs::directory_iterator(dir, ec)) {
+    if (entry.path().extension() == ".yaml") names.push_back(entry.path().stem().string());
+  }
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+RunConfig make_run_config(const Scenario& s) {
+  RunConfig config;
+  const YamlReader r(s.file);
+  const bool is_mjcf = s.robot.size() > 4 && s.robot.substr(s.robot.size() - 4) == ".xml";
+  if (is_mjcf) {
+    config.sim.world.robot_mjcf = resolve(s.robot, s.file);
+    if (!fs::exists(config.sim.world.robot_mjcf)) {
+      throw InputError(s.file + ": key 'robot': no such model file: " + config.sim.world.robot_mjcf);
+    }
+    config.robot = fs::path(s.robot).stem().string();
+  } else {
+    const fs::path file = fs::path(data_directory()) / "config" / "robots" / (s.robot + ".yaml");
+    if (s.robot.find('/') != std::string::npos || !fs::exists(file)) {
+      std::string list;
+      for (const auto& name : known_robots()) list += (list.empty() ? "" : ", ") + name;
+      throw InputError(s.file + ": key 'robot': unknown robot '" + s.robot + "' (known: " + list +
+                       ", or a path to an MJCF .xml file)");
+    }
+    config.robot = s.robot;
+    config.robot_file = file.string();
+    read_robot_file(config.robot_file, config);
+  }
+  read_simulation(r, s.simulation, config.sim);
+  read_controller(r, s.controller, config.controller);
+  if (config.controller.model_path.empty()) config.controller.model_path = config.sim.world.robot_mjcf;
+
+  config.sim.world.terrain = s.terrain;
+  config.sim.world.model_error = s.model_error;
+  config.sim.pushes = s.pushes;
+  config.sim.sensor_noise = s.sensor_noise;
+  config.sim.sensor_delay_cycles = s.sensor_delay_cycles;
+  config.sim.faults = s.faults;
+  config.sim.seed = s.seed;
+  config.sim.software_limit_margin_rad = config.controller.software_limit_margin_rad;
+  return config;
+}
+
+}  // namespace biped

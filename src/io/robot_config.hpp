@@ -1,0 +1,35 @@
+#pragma once
+// Robot parameter files (config/robots/NAME.yaml): the simulated robot (model, drives, sensors)
+// and the controller's parameters. A scenario selects a robot and overrides parts of its file.
+#include <string>
+
+#include "control/standing_controller.hpp"
+#include "io/scenario.hpp"
+#include "sim/simulation.hpp"
+
+namespace biped {
+
+struct ControllerConfig {
+  std::string model_path;  // the controller's own MJCF (default: the simulated robot's)
+  bool stabilizer = true;  // used by the walking controller; the standing controller has none
+  double software_limit_margin_rad = 5.0 * M_PI / 180.0;
+  StandingControllerParams standing;
+};
+
+struct RunConfig {
+  std::string robot;        // robot name (or the MJCF file's stem)
+  std::string robot_file;   // the parameter file read ("" for a bare MJCF)
+  SimulationParams sim;
+  ControllerConfig controller;
+};
+
+// Directory holding models/ and config/: $BIPED_DATA_DIR, or the source tree it was built from.
+std::string data_directory();
+// Names of the robots that have a parameter file.
+std::vector<std::string> known_robots();
+
+// Resolves the scenario's robot, reads its parameter file, and applies the scenario's overrides,
+// disturbances, terrain, model error and sensor settings. Throws InputError naming file and key.
+RunConfig make_run_config(const Scenario& scenario);
+
+}  // namespace biped

@@ -1,0 +1,130 @@
+#include "io/run_recorder.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "math/rotations.hpp"
+
+namespace biped {
+namespace {
+
+constexpr double kRadToDeg = 180.0 / M_PI;
+constexpr double kContactOnN = 50.0;   // touchdown: ground-truth normal force rises above this
+constexpr double kContactOffN = 10.0;  // lift-off: falls below this
+
+double wrap_angle(double a) { return std::atan2(std::sin(a), std::cos(a)); }
+
+double percentile(std::vector<double> v, double p) {
+  if (v.empty()) return 0.0;
+  const std::size_t k = std::min(v.size() - 1, static_cast<std::size_t>(std::floor(p * (v.size() - 1) + 0.5)));
+  std::nth_element(v.begin(), v.begin() + static_cast<long>(k), v.end());
+  return v[k];
+}
+
+}  // namespace
+
+RunRecorder::RunRecorder(const Simulation& sim, std::ostream* csv) : csv_(csv) {
+  if (!csv_) return;
+  std::ostream& o = *csv_;
+  o << "t,state,fault,base_x,base_y,base_z,phi_x_deg,phi_y_deg,com_x,com_y,com_z";
+  for (Side side : kSides) {
+    const std::string p = name_of(side);
+    o << ',' << p << "_Fz_des," << p << "_Tx_des," << p << "_Ty_des," << p << "_Fz," << p << "_Tx," << p << "_Ty";
+  }
+  o << ",cycle_us";
+  for (int i = 0; i < sim.plant().mj()->nq; ++i) o << ",qpos_" << i;
+  o << '\n';
+}
+
+void RunRecorder::record(const Simulation& sim, const SensorData& sensors, const JointCommand& /*setpoints*/,
+                         const ControllerStatus& status, double cycle_us) {
+  const mjModel* m = sim.plant().mj();
+  const mjData* d = sim.data();
+  const double* base = d->xpos + 3 * sim.plant().pelvis_body();
+  const Eigen::Matrix3d upper_body = math::mat_from_mujoco(d->xmat + 9 * sim.plant().upper_body());
+  const Eigen::Matrix3d pelvis_rot = math::mat_from_mujoco(d->xmat + 9 * sim.plant().pelvis_body());
+  const math::TiltAngles tilt = math::tilt_against_gravity(upper_body);
+  const double yaw = math::heading_of(pelvis_rot);
+  if (!started_) {
+    start_x_ = base[0];
+    start_y_ = base[1];
+    start_yaw_ = yaw;
+    started_ = true;
+  }
+  std::copy(base, base + 3, final_pos_);
+  final_yaw_ = yaw;
+  max_tilt_ = std::max(max_tilt_, math::tilt_from_vertical(upper_body));
+  samples_.push_back({d->time, base[2], tilt.sagittal, tilt.lateral});
+  for (Side side : kSides) {
+    const int k = index_of(side);
+    const double force = sim.foot_contact_force(side);
+    if (!in_contact_[k] && force > kContactOnN) {
+      in_contact_[k] = true;
+      ++touchdowns_;
+    } else if (in_contact_[k] && force < kContactOffN) {
+      in_contact_[k] = false;
+    }
+  }
+  if (!csv_) return;
+
+  std::ostream& o = *csv_;
+  // The CoM of the whole robot is the subtree CoM of the world body.
+  const double* com = d->subtree_com;
+  std::snprintf(line_, sizeof(line_), "%.4f,%s,%d,%.6f,%.6f,%.6f,%.4f,%.4f,%.6f,%.6f,%.6f", d->time, status.state,
+                status.fault ? 1 : 0, base[0], base[1], base[2], tilt.sagittal * kRadToDeg, tilt.lateral * kRadToDeg,
+                com[0], com[1], com[2]);
+  o << line_;
+  for (Side side : kSides) {
+    const Wrench& des = status.desired_wrench[index_of(side)];
+    const Wrench& meas = sensors.foot_wrench[index_of(side)];
+    std::snprintf(line_, sizeof(line_), ",%.3f,%.4f,%.4f,%.3f,%.4f,%.4f", des.force.z(), des.torque.x(),
+                  des.torque.y(), meas.force.z(), meas.torque.x(), meas.torque.y());
+    o << line_;
+  }
+  std::snprintf(line_, sizeof(line_), ",%.2f", cycle_us);
+  o << line_;
+  for (int i = 0; i < m->nq; ++i) {
+    std::snprintf(line_, sizeof(line_), ",%.7g", d->qpos[i]);
+    o << line_;
+  }
+  o << '\n';
+}
+
+nlohmann::json RunRecorder::summary(const std::string& robot, const std::string& scenario, const RunResult& result,
+                                    const ControllerStatus& final_status) const {
+  double sum_x = 0.0, sum_y = 0.0;
+  for (const Sample& s : samples_) {
+    sum_x += s.tilt_sagittal * s.tilt_sagittal;
+    sum_y += s.tilt_lateral * s.tilt_lateral;
+  }
+  const double n = std::max<double>(1.0, static_cast<double>(samples_.size()));
+  const double distance = std::hypot(final_pos_[0] - start_x_, final_pos_[1] - start_y_);
+  nlohmann::json j;
+  j["robot"] = robot;
+  j["scenario"] = scenario;
+  j["sim_time_s"] = result.sim_time;
+  j["wall_time_s"] = result.wall_time;
+  j["realtime_factor"] = result.wall_time > 0.0 ? result.sim_time / result.wall_time : 0.0;
+  j["fell"] = result.fell;
+  j["fall_time_s"] = result.fell ? nlohmann::json(result.fall_time) : nlohmann::json(nullptr);
+  j["fall_reason"] = result.fall_reason;
+  j["distance_m"] = distance;
+  j["mean_speed_mps"] = result.sim_time > 0.0 ? distance / result.sim_time : 0.0;
+  j["steps"] = touchdowns_;
+  j["final_base_position"] = {final_pos_[0], final_pos_[1], final_pos_[2]};
+  j["heading_change_rad"] = wrap_angle(final_yaw_ - start_yaw_);
+  j["upper_body_tilt_deg"] = {{"rms_x", std::sqrt(sum_x / n) * kRadToDeg},
+                              {"rms_y", std::sqrt(sum_y / n) * kRadToDeg},
+                              {"max", max_tilt_ * kRadToDeg}};
+  j["controller_cycle_us"] = {{"median", percentile(result.cycle_us, 0.5)},
+                              {"p99", percentile(result.cycle_us, 0.99)},
+                              {"max", result.cycle_us.empty() ? 0.0
+                                                              : *std::max_element(result.cycle_us.begin(),
+                                                                                  result.cycle_us.end())}};
+  j["final_state"] = final_status.state;
+  j["fault"] = final_status.fault ? nlohmann::json(final_status.fault_reason) : nlohmann::json(nullptr);
+  return j;
+}
+
+}  // namespace biped

@@ -1,0 +1,37 @@
+#pragma once
+// Scenario files (DESIGN.md "Scenario file"): what to simulate, for how long, with which commands,
+// disturbances, terrain, model and sensor errors.
+#include <yaml-cpp/yaml.h>
+
+#include <string>
+#include <vector>
+
+#include "sim/closed_loop.hpp"
+#include "sim/simulation.hpp"
+#include "sim/world.hpp"
+
+namespace biped {
+
+struct Scenario {
+  std::string file;  // path of the scenario file
+  std::string name;
+  std::string robot;  // as written: a robot name, or a path to an MJCF file
+  double duration = 0.0;
+  unsigned long long seed = 1;
+  double log_rate_hz = 100.0;
+  std::vector<TimedCommand> commands;
+  std::vector<Push> pushes;
+  std::vector<TerrainFeature> terrain;
+  ModelErrorSpec model_error;
+  bool sensor_noise = false;
+  int sensor_delay_cycles = 0;
+  std::vector<SensorFault> faults;
+  YAML::Node controller;  // overrides of the robot parameter file's `controller` section
+  YAML::Node simulation;  // overrides of its `simulation` section
+};
+
+// Reads and checks a scenario file after applying the `--set KEY=VALUE` overrides; throws
+// InputError with one line naming the file and the key (and line) at fault.
+Scenario load_scenario(const std::string& path, const std::vector<std::string>& overrides = {});
+
+}  // namespace biped

@@ -1,0 +1,86 @@
+#include "io/scenario_runner.hpp"
+
+#include <filesystem>
+
+#include "control/standing_controller.hpp"
+#include "io/output_files.hpp"
+#include "io/run_recorder.hpp"
+#include "io/yaml_reader.hpp"
+
+namespace biped {
+namespace {
+
+// Forwards each record to two observers.
+class ObserverPair final : public RunObserver {
+ public:
+  ObserverPair(RunObserver& a, RunObserver* b) : a_(a), b_(b) {}
+  void record(const Simulation& sim, const SensorData& s, const JointCommand& c, const ControllerStatus& st,
+              double us) override {
+    a_.record(sim, s, c, st, us);
+    if (b_) b_->record(sim, s, c, st, us);
+  }
+
+ private:
+  RunObserver& a_;
+  RunObserver* b_;
+};
+
+}  // namespace
+
+RobotModel load_controller_model(const RunConfig& config) {
+  return RobotModel::load(config.controller.model_path, config.controller.software_limit_margin_rad);
+}
+
+std::unique_ptr<Controller> make_controller(const RunConfig& config, const RobotModel& model) {
+  return std::make_unique<StandingController>(model, config.controller.standing);
+}
+
+void check_scenario_against_model(const Scenario& s, const RobotModel& model) {
+  for (std::size_t i = 0; i < s.faults.size(); ++i) {
+    const std::string& name = s.faults[i].sensor;
+    if (name != "ft_left" && name != "ft_right" && name != "imu" && model.joint_index(name) < 0) {
+      throw InputError(s.file + ": key 'sensors.faults." + std::to_string(i) + ".sensor': unknown sensor '" + name +
+                       "' (ft_left, ft_right, imu, or a joint name)");
+    }
+  }
+  for (std::size_t i = 0; i < s.pushes.size(); ++i) {
+    if (mj_name2id(model.mj(), mjOBJ_BODY, s.pushes[i].body.c_str()) < 0) {
+      throw InputError(s.file + ": key 'disturbances." + std::to_string(i) + ".body': unknown body '" +
+                       s.pushes[i].body + "'");
+    }
+  }
+}
+
+ScenarioResult run_scenario(const Scenario& scenario, const RunConfig& config, const std::string& out_dir,
+                            RunObserver* extra_observer) {
+  const RobotModel model = load_controller_model(config);
+  check_scenario_against_model(scenario, model);
+  Simulation sim(config.sim, model);
+  std::unique_ptr<Controller> controller = make_controller(config, model);
+
+  std::unique_ptr<AtomicOutputFile> log_file, summary_file;
+  if (!out_dir.empty()) {
+    prepare_output_directory(out_dir);
+    log_file = std::make_unique<AtomicOutputFile>((std::filesystem::path(out_dir) / "log.csv").string());
+    summary_file = std::make_unique<AtomicOutputFile>((std::filesystem::path(out_dir) / "summary.json").string());
+  }
+  RunRecorder recorder(sim, log_file ? &log_file->stream() : nullptr);
+  ObserverPair observers(recorder, extra_observer);
+
+  RunOptions options;
+  options.duration = scenario.duration;
+  options.log_period = 1.0 / scenario.log_rate_hz;
+  ScenarioResult result;
+  result.run = run_closed_loop(sim, *controller, scenario.commands, options, &observers);
+  result.summary = recorder.summary(config.robot, scenario.name, result.run, controller->status());
+  result.summary["seed"] = scenario.seed;
+  result.summary["controller"] = "standing";
+  if (summary_file) {
+    summary_file->stream() << result.summary.dump(2) << '\n';
+    log_file->commit();
+    summary_file->commit();
+  }
+  return result;
+}
+
+}  // namespace biped

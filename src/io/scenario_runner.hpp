@@ -1,0 +1,32 @@
+#pragma once
+// Runs one scenario end to end: the controller's model, the controller, the simulation, the
+// closed loop, and the output files.
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "control/interface.hpp"
+#include "io/robot_config.hpp"
+#include "io/scenario.hpp"
+#include "sim/closed_loop.hpp"
+
+namespace biped {
+
+// The controller's own model, loaded from the configured MJCF (throws ModelError).
+RobotModel load_controller_model(const RunConfig& config);
+// The controller that takes the slot of Fig. 3 for this configuration.
+std::unique_ptr<Controller> make_controller(const RunConfig& config, const RobotModel& model);
+// Checks names in the scenario that only the model can resolve (fault sensors, pushed bodies).
+void check_scenario_against_model(const Scenario& scenario, const RobotModel& model);
+
+struct ScenarioResult {
+  nlohmann::json summary;
+  RunResult run;
+};
+
+// Runs the scenario. With a non-empty `out_dir`, writes summary.json and log.csv there, each whole
+// or not at all. Throws InputError / ModelError for bad input before any file is created.
+ScenarioResult run_scenario(const Scenario& scenario, const RunConfig& config, const std::string& out_dir,
+                            RunObserver* extra_observer = nullptr);
+
+}  // namespace biped

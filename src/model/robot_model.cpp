@@ -1,0 +1,174 @@
+#include "model/robot_model.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace biped {
+namespace {
+
+int require_id(const mjModel* m, mjtObj type, const std::string& name, const std::string& path,
+               const char* what) {
+  const int id = mj_name2id(m, type, name.c_str());
+  if (id < 0) throw ModelError(path + ": the model has no " + what + " named '" + name + "'");
+  return id;
+}
+
+bool is_in_subtree(const mjModel* m, int body, int root) {
+  for (int b = body; b > 0; b = m->body_parentid[b]) {
+    if (b == root) return true;
+  }
+  return root == 0;
+}
+
+bool ends_with(std::string_view s, std::string_view suffix) {
+  return s.size() >= suffix.size() && s.substr(s.size() - suffix.size()) == suffix;
+}
+
+// Sole rectangle of a foot in its sensor frame, from the box geoms named "*_sole" below the
+// sensor, evaluated with every joint at zero.
+void measure_sole(const mjModel* m, mjData* d, FootInfo& foot, const std::string& path,
+                  const char* side) {
+  const Eigen::Vector3d site_pos(d->site_xpos + 3 * foot.sensor_site);
+  const Eigen::Matrix3d site_rot =
+      Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(d->site_xmat + 9 * foot.sensor_site);
+  double x_min = std::numeric_limits<double>::infinity(), x_max = -x_min;
+  double y_min = x_min, y_max = -x_min, z_min = x_min;
+  for (int g : foot.sole_geoms) {
+    if (m->geom_type[g] != mjGEOM_BOX) {
+      throw ModelError(path + ": sole geom '" + mj_id2name(m, mjOBJ_GEOM, g) + "' must be a box");
+    }
+    const Eigen::Vector3d half(m->geom_size + 3 * g);
+    const Eigen::Vector3d center(d->geom_xpos + 3 * g);
+    const Eigen::Matrix3d rot =
+        Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(d->geom_xmat + 9 * g);
+    for (int corner = 0; corner < 8; ++corner) {
+      const Eigen::Vector3d local((corner & 1 ? 1 : -1) * half.x(), (corner & 2 ? 1 : -1) * half.y(),
+                                  (corner & 4 ? 1 : -1) * half.z());
+      const Eigen::Vector3d in_sensor = site_rot.transpose() * (center + rot * local - site_pos);
+      x_min = std::min(x_min, in_sensor.x());
+      x_max = std::max(x_max, in_sensor.x());
+      y_min = std::min(y_min, in_sensor.y());
+      y_max = std::max(y_max, in_sensor.y());
+      z_min = std::min(z_min, in_sensor.z());
+    }
+  }
+  if (foot.sole_geoms.empty()) {
+    throw ModelError(path + ": no box geom named '*_sole' below the sensor of the " + side + " foot");
+  }
+  foot.sole_x_min = x_min;
+  foot.sole_x_max = x_max;
+  foot.sole_y_min = y_min;
+  foot.sole_y_max = y_max;
+  foot.sole_z = z_min;
+}
+
+}  // namespace
+
+RobotModel RobotModel::load(const std::string& mjcf_path, double software_limit_margin_rad) {
+  char error[1000] = "";
+  mjModel* raw = mj_loadXML(mjcf_path.c_str(), nullptr, error, sizeof(error));
+  if (!raw) throw ModelError(mjcf_path + ": cannot load model: " + error);
+  return adopt(raw, mjcf_path, software_limit_margin_rad);
+}
+
+RobotModel RobotModel::adopt(mjModel* compiled, const std::string& mjcf_path, double software_limit_margin_rad) {
+  RobotModel model;
+  model.model_.reset(compiled);
+  model.path_ = mjcf_path;
+  const mjModel* m = compiled;
+  model.name_ = m->names;  // the model name comes first in the names buffer
+
+  if (m->njnt < 1 || m->jnt_type[0] != mjJNT_FREE || m->jnt_bodyid[0] != 1) {
+    throw ModelError(mjcf_path + ": the first joint must be the free joint of the root body");
+  }
+  model.pelvis_body_ = require_id(m, mjOBJ_BODY, "pelvis", mjcf_path, "body");
+  if (model.pelvis_body_ != 1) throw ModelError(mjcf_path + ": the root body must be 'pelvis'");
+  model.upper_body_ = require_id(m, mjOBJ_BODY, "upper_body", mjcf_path, "body");
+  model.imu_site_ = require_id(m, mjOBJ_SITE, "imu", mjcf_path, "site");
+
+  for (int j = 1; j < m->njnt; ++j) {
+    if (m->jnt_type[j] != mjJNT_HINGE) {
+      throw ModelError(mjcf_path + ": joint '" + std::string(mj_id2name(m, mjOBJ_JOINT, j)) +
+                       "' is not a hinge; only the root may have a free joint");
+    }
+    JointInfo info;
+    info.name = mj_id2name(m, mjOBJ_JOINT, j);
+    info.mj_joint = j;
+    info.qpos_adr = m->jnt_qposadr[j];
+    info.dof_adr = m->jnt_dofadr[j];
+    if (!m->jnt_limited[j]) throw ModelError(mjcf_path + ": joint '" + info.name + "' has no range");
+    info.lower = m->jnt_range[2 * j];
+    info.upper = m->jnt_range[2 * j + 1];
+    info.soft_lower = info.lower + software_limit_margin_rad;
+    info.soft_upper = info.upper - software_limit_margin_rad;
+    if (info.soft_lower >= info.soft_upper) {
+      throw ModelError(mjcf_path + ": joint '" + info.name + "' range is narrower than twice the software margin");
+    }
+    for (int a = 0; a < m->nu; ++a) {
+      if (m->actuator_trntype[a] == mjTRN_JOINT && m->actuator_trnid[2 * a] == j) {
+        info.torque_limit = m->actuator_ctrllimited[a]
+                                ? std::max(std::abs(m->actuator_ctrlrange[2 * a]),
+                                           std::abs(m->actuator_ctrlrange[2 * a + 1])) *
+                                      std::abs(m->actuator_gear[6 * a])
+                                : 0.0;
+      }
+    }
+    model.joints_.push_back(std::move(info));
+  }
+
+  for (Side side : kSides) {
+    FootInfo& foot = model.feet_[index_of(side)];
+    const std::string prefix = name_of(side);
+    foot.body = require_id(m, mjOBJ_BODY, prefix + "_foot", mjcf_path, "body");
+    foot.sensor_site = require_id(m, mjOBJ_SITE, prefix + "_ft", mjcf_path, "site");
+    if (m->site_bodyid[foot.sensor_site] != foot.body) {
+      throw ModelError(mjcf_path + ": site '" + prefix + "_ft' must be in body '" + prefix + "_foot'");
+    }
+    for (int b = 1; b < m->nbody; ++b) {
+      if (!is_in_subtree(m, b, foot.body)) continue;
+      foot.bodies_below_sensor.push_back(b);
+      foot.mass_below_sensor += m->body_mass[b];
+    }
+    for (int g = 0; g < m->ngeom; ++g) {
+      const char* geom_name = mj_id2name(m, mjOBJ_GEOM, g);
+      if (geom_name && ends_with(geom_name, "_sole") && is_in_subtree(m, m->geom_bodyid[g], foot.body)) {
+        foot.sole_geoms.push_back(g);
+      }
+    }
+  }
+  for (const char* sensor : {"left_ft_force", "left_ft_torque", "right_ft_force", "right_ft_torque",
+                             "imu_quat", "imu_gyro", "imu_accel"}) {
+    require_id(m, mjOBJ_SENSOR, sensor, mjcf_path, "sensor");
+  }
+
+  for (int b = 1; b < m->nbody; ++b) model.total_mass_ += m->body_mass[b];
+
+  const int key = require_id(m, mjOBJ_KEY, "stand", mjcf_path, "keyframe");
+  model.stand_qpos_ = Eigen::Map<const Eigen::VectorXd>(m->key_qpos + key * m->nq, m->nq);
+  model.stand_pose_.resize(model.num_joints());
+  for (int i = 0; i < model.num_joints(); ++i) {
+    model.stand_pose_[i] = model.stand_qpos_[model.joints_[i].qpos_adr];
+  }
+
+  RobotData data(model);
+  mj_kinematics(m, data.mj());
+  for (Side side : kSides) measure_sole(m, data.mj(), model.feet_[index_of(side)], mjcf_path, name_of(side));
+  return model;
+}
+
+int RobotModel::joint_index(std::string_view joint_name) const {
+  for (int i = 0; i < num_joints(); ++i) {
+    if (joints_[i].name == joint_name) return i;
+  }
+  return -1;
+}
+
+double RobotModel::weight_above_sensors() const {
+  const double g = std::abs(model_->opt.gravity[2]);
+  return (total_mass_ - feet_[0].mass_below_sensor - feet_[1].mass_below_sensor) * g;
+}
+
+RobotData::RobotData(const RobotModel& model) : data_(mj_makeData(model.mj())) {}
+
+}  // namespace biped

@@ -1,0 +1,145 @@
+#include "sim/simulation.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace biped {
+namespace {
+
+RobotModel build_plant(const SimulationParams& p) {
+  return RobotModel::adopt(build_world(p.world), p.world.robot_mjcf, p.software_limit_margin_rad);
+}
+
+std::vector<int> map_joints(const RobotModel& plant, const RobotModel& controller_model) {
+  std::vector<int> plant_joint_of;
+  for (const JointInfo& j : controller_model.joints()) {
+    const int p = plant.joint_index(j.name);
+    if (p < 0) {
+      throw ModelError(plant.path() + ": the simulated robot has no joint '" + j.name + "' of the controller's model");
+    }
+    plant_joint_of.push_back(p);
+  }
+  return plant_joint_of;
+}
+
+SensorEmulationParams sensor_params(const SimulationParams& p, const RobotModel& plant) {
+  SensorEmulationParams s;
+  for (const JointInfo& j : plant.joints()) {
+    const auto it = p.encoder_bits_of.find(j.name);
+    s.encoder_bits.push_back(it != p.encoder_bits_of.end() ? it->second : p.encoder_bits);
+  }
+  s.noise = p.sensor_noise;
+  s.noise_levels = p.noise_levels;
+  s.delay_cycles = p.sensor_delay_cycles;
+  s.faults = p.faults;
+  s.seed = p.seed;
+  return s;
+}
+
+// Lowest point of the soles above the ground, with the robot at its current qpos.
+double sole_clearance(const RobotModel& plant, const mjData* d, const std::vector<TerrainFeature>& terrain) {
+  const mjModel* m = plant.mj();
+  double clearance = std::numeric_limits<double>::infinity();
+  for (Side side : kSides) {
+    for (int g : plant.foot(side).sole_geoms) {
+      const Eigen::Vector3d half(m->geom_size + 3 * g);
+      const Eigen::Vector3d center(d->geom_xpos + 3 * g);
+      const Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> rot(d->geom_xmat + 9 * g);
+      for (int c = 0; c < 8; ++c) {
+        const Eigen::Vector3d corner =
+            center + rot * Eigen::Vector3d((c & 1 ? 1 : -1) * half.x(), (c & 2 ? 1 : -1) * half.y(),
+                                           (c & 4 ? 1 : -1) * half.z());
+        clearance = std::min(clearance, corner.z() - terrain_height(terrain, corner.x()));
+      }
+    }
+  }
+  return clearance;
+}
+
+}  // namespace
+
+Simulation::Simulation(const SimulationParams& params, const RobotModel& controller_model)
+    : params_(params),
+      plant_(build_plant(params)),
+      data_(mj_makeData(plant_.mj())),
+      plant_joint_of_(map_joints(plant_, controller_model)),
+      drives_(plant_, params.drives),
+      sensors_(plant_, plant_joint_of_, sensor_params(params, plant_)),
+      plant_setpoint_(plant_.stand_pose()),
+      fall_detector_(plant_, params.world.terrain, 1.0) {
+  const double ratio = params.control_period / params.world.timestep;
+  steps_per_period_ = static_cast<int>(std::lround(ratio));
+  if (steps_per_period_ < 1 || std::abs(ratio - steps_per_period_) > 1e-9) {
+    throw ModelError("the control period must be a whole number of physics steps");
+  }
+  for (const Push& push : params.pushes) {
+    const int body = mj_name2id(plant_.mj(), mjOBJ_BODY, push.body.c_str());
+    if (body < 0) throw ModelError(plant_.path() + ": push on unknown body '" + push.body + "'");
+    push_body_.push_back(body);
+  }
+  reset();
+}
+
+void Simulation::reset() {
+  const mjModel* m = plant_.mj();
+  mjData* d = data_.get();
+  mj_resetData(m, d);
+  Eigen::Map<Eigen::VectorXd>(d->qpos, m->nq) = plant_.stand_qpos();
+  d->qpos[0] = 0.0;
+  d->qpos[1] = 0.0;
+  mj_kinematics(m, d);
+  d->qpos[2] -= sole_clearance(plant_, d, params_.world.terrain);
+  mj_forward(m, d);
+  standing_pelvis_height_ = d->xpos[3 * plant_.pelvis_body() + 2] - terrain_height(params_.world.terrain, 0.0);
+  fall_detector_ = FallDetector(plant_, params_.world.terrain, standing_pelvis_height_);
+  plant_setpoint_ = plant_.stand_pose();
+  drives_.set_targets(plant_setpoint_, params_.control_period);
+  fall_reason_ = nullptr;
+  fall_time_ = 0.0;
+}
+
+void Simulation::read_sensors(SensorData& out) { sensors_.sample(data_.get(), data_->time, out); }
+
+void Simulation::command(const JointCommand& setpoints) {
+  for (std::size_t i = 0; i < plant_joint_of_.size(); ++i) plant_setpoint_[plant_joint_of_[i]] = setpoints.position[i];
+  drives_.set_targets(plant_setpoint_, params_.control_period);
+}
+
+void Simulation::advance() {
+  const mjModel* m = plant_.mj();
+  mjData* d = data_.get();
+  for (std::size_t k = 0; k < params_.pushes.size(); ++k) {
+    const Push& push = params_.pushes[k];
+    const bool active = d->time >= push.t - 1e-9 && d->time < push.t + push.duration - 1e-9;
+    for (int a = 0; a < 3; ++a) d->xfrc_applied[6 * push_body_[k] + a] = active ? push.force[a] : 0.0;
+  }
+  for (int step = 0; step < steps_per_period_; ++step) {
+    mj_step1(m, d);
+    drives_.apply(m, d);
+    mj_step2(m, d);
+  }
+  if (!fall_reason_) {
+    fall_reason_ = fall_detector_.check(d);
+    if (fall_reason_) fall_time_ = d->time;
+  }
+}
+
+double Simulation::foot_contact_force(Side side) const {
+  const mjModel* m = plant_.mj();
+  const mjData* d = data_.get();
+  const auto& bodies = plant_.foot(side).bodies_below_sensor;
+  double total = 0.0;
+  for (int i = 0; i < d->ncon; ++i) {
+    const int b1 = m->geom_bodyid[d->contact[i].geom1];
+    const int b2 = m->geom_bodyid[d->contact[i].geom2];
+    const int robot_body = b1 == 0 ? b2 : (b2 == 0 ? b1 : -1);
+    if (robot_body <= 0 || std::find(bodies.begin(), bodies.end(), robot_body) == bodies.end()) continue;
+    mjtNum force[6];
+    mj_contactForce(m, d, i, force);
+    total += force[0];
+  }
+  return total;
+}
+
+}  // namespace biped

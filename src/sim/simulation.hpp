@@ -1,0 +1,91 @@
+#pragma once
+// One simulated robot in its world: MuJoCo multibody dynamics with compliant unilateral foot
+// contact, the robot's joint position controllers, emulated sensors, pushes and fall detection.
+// The controller talks to it only through SensorData and JointCommand.
+#include <mujoco/mujoco.h>
+
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "control/interface.hpp"
+#include "model/robot_model.hpp"
+#include "sim/fall_detection.hpp"
+#include "sim/joint_drives.hpp"
+#include "sim/sensor_emulation.hpp"
+#include "sim/world.hpp"
+
+namespace biped {
+
+struct Push {
+  double t = 0.0;                  // [s] start
+  double duration = 0.1;           // [s]
+  std::string body = "upper_body";
+  Eigen::Vector3d force = Eigen::Vector3d::Zero();  // [N] world frame, at the body's CoM
+};
+
+struct SimulationParams {
+  WorldSpec world;
+  double control_period = 0.001;  // [s], a whole number of physics steps
+  DriveParams drives;
+  int encoder_bits = 17;                       // default resolution
+  std::map<std::string, int> encoder_bits_of;  // per joint name, overrides the default
+  bool sensor_noise = false;
+  SensorNoiseParams noise_levels;
+  int sensor_delay_cycles = 0;
+  std::vector<SensorFault> faults;
+  std::vector<Push> pushes;
+  unsigned long long seed = 1;
+  double software_limit_margin_rad = 5.0 * M_PI / 180.0;
+};
+
+class Simulation {
+ public:
+  // Builds the world; `controller_model` fixes the joint order of SensorData and JointCommand.
+  // Throws ModelError when the world cannot be built or a controller joint is missing.
+  Simulation(const SimulationParams& params, const RobotModel& controller_model);
+
+  // The robot in its "stand" keyframe, soles resting on the ground, at time 0.
+  void reset();
+  // The sensor reading the controller receives now.
+  void read_sensors(SensorData& out);
+  // New joint set-points (controller order), held until the next command.
+  void command(const JointCommand& setpoints);
+  // Advances one control period: physics steps with the joint drives evaluated at every step.
+  void advance();
+
+  double time() const { return data_->time; }
+  int physics_steps_per_control_period() const { return steps_per_period_; }
+  int num_controller_joints() const { return static_cast<int>(plant_joint_of_.size()); }
+  const RobotModel& plant() const { return plant_; }
+  const mjData* data() const { return data_.get(); }
+  const JointDrives& drives() const { return drives_; }
+  const SensorEmulation& sensors() const { return sensors_; }
+  // Ground-truth normal contact force on a foot [N].
+  double foot_contact_force(Side side) const;
+  double standing_pelvis_height() const { return standing_pelvis_height_; }
+  // nullptr while the robot has not fallen.
+  const char* fall_reason() const { return fall_reason_; }
+  double fall_time() const { return fall_time_; }
+
+ private:
+  struct MjDataDeleter {
+    void operator()(mjData* d) const { mj_deleteData(d); }
+  };
+  SimulationParams params_;
+  RobotModel plant_;
+  std::unique_ptr<mjData, MjDataDeleter> data_;
+  std::vector<int> plant_joint_of_;
+  JointDrives drives_;
+  SensorEmulation sensors_;
+  std::vector<int> push_body_;
+  Eigen::VectorXd plant_setpoint_;
+  int steps_per_period_ = 1;
+  double standing_pelvis_height_ = 0.0;
+  FallDetector fall_detector_;
+  const char* fall_reason_ = nullptr;
+  double fall_time_ = 0.0;
+};
+
+}  // namespace biped

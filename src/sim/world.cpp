@@ -1,0 +1,133 @@
+#include "sim/world.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <memory>
+#include <sstream>
+
+#include "model/robot_model.hpp"
+
+namespace biped {
+namespace {
+
+constexpr double kDegToRad = M_PI / 180.0;
+constexpr double kTerrainHalfWidth = 20.0;   // [m] lateral extent of terrain blocks
+constexpr double kTerrainStart = -20.0;      // [m] terrain blocks cover x from here ...
+constexpr double kTerrainEnd = 100.0;        // ... to here
+constexpr double kBlockDepth = 0.5;          // [m] thickness of terrain blocks below their surface
+
+struct Segment {
+  double x0, x1;  // along x
+  double z0, z1;  // ground height at x0 and x1
+};
+
+std::vector<TerrainFeature> sorted(std::vector<TerrainFeature> terrain) {
+  std::sort(terrain.begin(), terrain.end(), [](const auto& a, const auto& b) { return a.x < b.x; });
+  return terrain;
+}
+
+// Piecewise-linear ground profile: flat segments between features, inclined ones on slopes.
+std::vector<Segment> ground_profile(const std::vector<TerrainFeature>& unsorted) {
+  std::vector<Segment> segments;
+  double x = kTerrainStart, z = 0.0;
+  for (const TerrainFeature& f : sorted(unsorted)) {
+    const double start = std::max(f.x, x);
+    if (start > x) segments.push_back({x, start, z, z});
+    x = start;
+    if (f.kind == TerrainFeature::Kind::Step) {
+      z += f.height;
+    } else {
+      const double x1 = x + f.length;
+      const double z1 = z + f.length * std::tan(f.angle_deg * kDegToRad);
+      segments.push_back({x, x1, z, z1});
+      x = x1;
+      z = z1;
+    }
+  }
+  segments.push_back({x, kTerrainEnd, z, z});
+  return segments;
+}
+
+std::string ground_xml(const WorldSpec& spec) {
+  std::ostringstream xml;
+  xml.precision(10);
+  const double mu = spec.ground_friction;
+  const std::string common = " contype=\"1\" conaffinity=\"2\" condim=\"3\" friction=\"" + std::to_string(mu) +
+                             " 0.005 0.0001\" rgba=\"0.55 0.6 0.65 1\"";
+  xml << "<light name=\"sun\" pos=\"0 0 6\" dir=\"0 0 -1\" directional=\"true\"/>\n";
+  if (spec.terrain.empty()) {
+    xml << "<geom name=\"ground\" type=\"plane\" size=\"0 0 1\"" << common << "/>\n";
+    return xml.str();
+  }
+  int i = 0;
+  for (const Segment& s : ground_profile(spec.terrain)) {
+    const double dx = s.x1 - s.x0, dz = s.z1 - s.z0;
+    const double length = std::hypot(dx, dz);
+    const double pitch = std::atan2(dz, dx);
+    // Box whose top face runs from (x0, z0) to (x1, z1).
+    const double cx = 0.5 * (s.x0 + s.x1) + 0.5 * kBlockDepth * std::sin(pitch);
+    const double cz = 0.5 * (s.z0 + s.z1) - 0.5 * kBlockDepth * std::cos(pitch);
+    xml << "<geom name=\"terrain_" << i++ << "\" type=\"box\" pos=\"" << cx << " 0 " << cz << "\" size=\""
+        << 0.5 * length << " " << kTerrainHalfWidth << " " << 0.5 * kBlockDepth << "\" quat=\""
+        << std::cos(-0.5 * pitch) << " 0 " << std::sin(-0.5 * pitch) << " 0\"" << common << "/>\n";
+  }
+  return xml.str();
+}
+
+std::string read_text(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw ModelError(path + ": cannot read the robot model file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+void apply_model_error(mjModel* m, const ModelErrorSpec& error) {
+  const int ub = mj_name2id(m, mjOBJ_BODY, "upper_body");
+  m->body_mass[ub] *= error.upper_body_mass_scale;
+  for (int k = 0; k < 3; ++k) {
+    m->body_inertia[3 * ub + k] *= error.upper_body_mass_scale;
+    m->body_ipos[3 * ub + k] += error.upper_body_com_offset[k];
+  }
+}
+
+}  // namespace
+
+double terrain_height(const std::vector<TerrainFeature>& terrain, double x) {
+  if (terrain.empty()) return 0.0;
+  for (const Segment& s : ground_profile(terrain)) {
+    if (x >= s.x0 && x < s.x1) return s.z0 + (x - s.x0) / (s.x1 - s.x0) * (s.z1 - s.z0);
+  }
+  return 0.0;
+}
+
+mjModel* build_world(const WorldSpec& spec) {
+  std::string xml = read_text(spec.robot_mjcf);
+  const auto end_of_world = xml.rfind("</worldbody>");
+  if (end_of_world == std::string::npos) throw ModelError(spec.robot_mjcf + ": no <worldbody> element");
+  xml.insert(end_of_world, ground_xml(spec));
+
+  // Compile from memory; the robot file needs no other files (no meshes, no includes).
+  auto vfs = std::make_unique<mjVFS>();
+  mj_defaultVFS(vfs.get());
+  const char* vfs_name = "world.xml";
+  if (mj_makeEmptyFileVFS(vfs.get(), vfs_name, static_cast<int>(xml.size())) != 0) {
+    throw ModelError(spec.robot_mjcf + ": cannot create the in-memory world file");
+  }
+  std::memcpy(vfs->filedata[mj_findFileVFS(vfs.get(), vfs_name)], xml.data(), xml.size());
+  char error[1000] = "";
+  mjModel* m = mj_loadXML(vfs_name, vfs.get(), error, sizeof(error));
+  mj_deleteVFS(vfs.get());
+  if (!m) throw ModelError(spec.robot_mjcf + ": cannot compile the world: " + error);
+  if (mj_name2id(m, mjOBJ_BODY, "upper_body") < 0) {
+    mj_deleteModel(m);
+    throw ModelError(spec.robot_mjcf + ": the model has no body named 'upper_body'");
+  }
+  m->opt.timestep = spec.timestep;
+  apply_model_error(m, spec.model_error);
+  return m;
+}
+
+}  // namespace biped

@@ -1,0 +1,41 @@
+#pragma once
+// The simulated world: the robot's MJCF plus ground, terrain the controller is not told about,
+// and deliberate errors of the simulated robot against the controller's model.
+#include <mujoco/mujoco.h>
+
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+namespace biped {
+
+struct TerrainFeature {
+  enum class Kind { Step, Slope };
+  Kind kind = Kind::Step;
+  double x = 0.0;          // [m] where the feature starts along the world x axis
+  double height = 0.0;     // step: change of ground level [m] (negative: step down)
+  double angle_deg = 0.0;  // slope: inclination, positive rising along +x
+  double length = 2.0;     // slope: horizontal length [m], flat again after it
+};
+
+struct ModelErrorSpec {
+  double upper_body_mass_scale = 1.0;
+  Eigen::Vector3d upper_body_com_offset = Eigen::Vector3d::Zero();  // [m] in the upper-body frame
+};
+
+struct WorldSpec {
+  std::string robot_mjcf;
+  double timestep = 0.001;
+  double ground_friction = 0.8;
+  std::vector<TerrainFeature> terrain;
+  ModelErrorSpec model_error;
+};
+
+// Ground height profile along x built from the terrain features (ground level 0 before the first).
+double terrain_height(const std::vector<TerrainFeature>& terrain, double x);
+
+// Compiles the world; throws ModelError naming the robot file on failure. The caller owns the result
+// (free with mj_deleteModel).
+mjModel* build_world(const WorldSpec& spec);
+
+}  // namespace biped
