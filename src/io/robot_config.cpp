@@ -20,11 +20,18 @@ std::string resolve(const std::string& path, const std::string& relative_to_file
 }
 
 void read_simulation(const YamlReader& r, const YAML::Node& sim, SimulationParams& p) {
-  r.expect_keys(sim, "simulation", {"timestep", "control_period", "ground_friction"});
+  r.expect_keys(sim, "simulation", {"timestep", "control_period", "ground_friction", "contact_timeconst",
+                                    "contact_dampratio"});
   if (!sim) return;
   p.world.timestep = r.positive_or(sim, "simulation", "timestep", p.world.timestep);
   p.control_period = r.positive_or(sim, "simulation", "control_period", p.control_period);
   p.world.ground_friction = r.positive_or(sim, "simulation", "ground_friction", p.world.ground_friction);
+  p.world.contact_timeconst = r.positive_or(sim, "simulation", "contact_timeconst", p.world.contact_timeconst);
+  p.world.contact_dampratio = r.positive_or(sim, "simulation", "contact_dampratio", p.world.contact_dampratio);
+  if (p.world.contact_timeconst < 2.0 * p.world.timestep) {
+    r.fail(sim["contact_timeconst"] ? sim["contact_timeconst"] : sim, "simulation.contact_timeconst",
+           "must be at least twice simulation.timestep for a stable contact");
+  }
   const double ratio = p.control_period / p.world.timestep;
   if (std::abs(ratio - std::round(ratio)) > 1e-9 || ratio < 0.5) {
     r.fail(sim["control_period"] ? sim["control_period"] : sim, "simulation.control_period",

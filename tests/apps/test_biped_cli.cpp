@@ -1,0 +1,161 @@
+// The `biped run` contract of DESIGN.md, exercised through the binary: exit statuses, one-line
+// errors naming the file and key, no partial output, deterministic logs.
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "test_support.hpp"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Outcome {
+  int status = -1;
+  std::string out, err;
+};
+
+fs::path work_dir() {
+  static const fs::path dir = [] {
+    const fs::path d = fs::temp_directory_path() / ("biped-cli-" + std::to_string(::getpid()));
+    fs::remove_all(d);
+    fs::create_directories(d);
+    return d;
+  }();
+  return dir;
+}
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+Outcome biped(const std::string& args) {
+  const fs::path out = work_dir() / "stdout.txt", err = work_dir() / "stderr.txt";
+  const std::string cmd = std::string(BIPED_BINARY) + " " + args + " >" + out.string() + " 2>" + err.string();
+  const int raw = std::system(cmd.c_str());
+  return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, slurp(out), slurp(err)};
+}
+
+fs::path scenario(const std::string& name, const std::string& text) {
+  const fs::path p = work_dir() / (name + ".yaml");
+  std::ofstream(p) << text;
+  return p;
+}
+
+int lines(const std::string& s) { return static_cast<int>(std::count(s.begin(), s.end(), '\n')); }
+
+// Bad input: status 2, exactly one line on stderr naming the file and the key or line, no output.
+void expect_bad_input(const std::string& args, const std::string& must_mention, const fs::path& out_dir) {
+  const Outcome o = biped(args);
+  EXPECT_EQ(o.status, 2) << args << "\n" << o.err;
+  EXPECT_EQ(lines(o.err), 1) << o.err;
+  EXPECT_NE(o.err.find(must_mention), std::string::npos) << o.err;
+  EXPECT_FALSE(fs::exists(out_dir / "log.csv"));
+  EXPECT_FALSE(fs::exists(out_dir / "summary.json"));
+}
+
+const char* kShortStand = "name: short\nrobot: johnnie\nduration: 0.3\n";
+
+TEST(BipedRun, BadInputIsExitStatusTwoWithOneLineAndNoFiles) {
+  const fs::path out = work_dir() / "bad-out";
+  const std::string o = " --out " + out.string();
+  expect_bad_input("run /nonexistent/s.yaml" + o, "/nonexistent/s.yaml", out);
+  const fs::path syntax = scenario("syntax", "robot: lola\nduration: [1\n");
+  expect_bad_input("run " + syntax.string() + o, syntax.string() + ":", out);
+  const fs::path robot = scenario("robot", "robot: asimo\nduration: 1\n");
+  expect_bad_input("run " + robot.string() + o, "key 'robot'", out);
+  const fs::path key = scenario("key", "robot: lola\nduration: 1\nspeed: 2\n");
+  expect_bad_input("run " + key.string() + o, "key.yaml:3: key 'speed'", out);
+  const fs::path negative = scenario("negative", "robot: lola\nduration: -4\n");
+  expect_bad_input("run " + negative.string() + o, "key 'duration'", out);
+  const fs::path nan = scenario("nan", "robot: lola\nduration: 1\ncommands: [{t: 0, vx: .nan}]\n");
+  expect_bad_input("run " + nan.string() + o, "key 'commands.0.vx'", out);
+  const fs::path fault = scenario("fault", "robot: lola\nduration: 1\nsensors: {faults: [{t: 0, sensor: gps, value: nan}]}\n");
+  expect_bad_input("run " + fault.string() + o, "key 'sensors.faults.0.sensor'", out);
+  const fs::path good = scenario("good", kShortStand);
+  expect_bad_input("run " + good.string() + " --set duration=.nan" + o, "key 'duration'", out);
+  expect_bad_input("run " + good.string() + " --set controller.stabiliser=false" + o, "controller.stabiliser", out);
+  // Unwritable output folder: a path through a regular file (root may write anywhere else).
+  std::ofstream(work_dir() / "a-file") << "x";
+  const fs::path blocked = work_dir() / "a-file" / "out";
+  expect_bad_input("run " + good.string() + " --out " + blocked.string(), blocked.string(), blocked);
+  EXPECT_FALSE(fs::exists(out));
+}
+
+TEST(BipedRun, WritesSummaryAndLogWithTheContractKeys) {
+  const fs::path out = work_dir() / "good-out";
+  const Outcome o = biped("run " + scenario("good", kShortStand).string() + " --out " + out.string());
+  ASSERT_EQ(o.status, 0) << o.err;
+  const auto summary = nlohmann::json::parse(slurp(out / "summary.json"));
+  for (const char* key : {"robot", "scenario", "sim_time_s", "wall_time_s", "realtime_factor", "fell", "fall_time_s",
+                          "distance_m", "mean_speed_mps", "steps", "final_base_position", "heading_change_rad",
+                          "upper_body_tilt_deg", "controller_cycle_us"}) {
+    EXPECT_TRUE(summary.contains(key)) << key;
+  }
+  EXPECT_EQ(summary["robot"], "johnnie");
+  EXPECT_FALSE(summary["fell"].get<bool>());
+  EXPECT_GT(summary["realtime_factor"].get<double>(), 0.0);
+  const std::string log = slurp(out / "log.csv");
+  const std::string header = log.substr(0, log.find('\n'));
+  for (const char* column : {"t,", "state", "base_x", "base_y", "base_z", "phi_x_deg", "phi_y_deg", "com_x", "com_y",
+                             "com_z", "left_Fz_des", "left_Fz", "left_Tx", "left_Ty", "right_Fz", "right_Ty_des",
+                             "cycle_us", "qpos_0", "qpos_23"}) {
+    EXPECT_NE(header.find(column), std::string::npos) << column;
+  }
+  EXPECT_EQ(lines(log), 1 + 30) << "0.3 s at 100 Hz";
+  EXPECT_EQ(std::distance(fs::directory_iterator(out), fs::directory_iterator()), 2) << "no temporary files left";
+}
+
+// Removes the one wall-clock column (cycle_us) from every row.
+std::string without_timing(const std::string& csv) {
+  std::stringstream in(csv), out;
+  std::string line;
+  int column = -1;
+  while (std::getline(in, line)) {
+    std::vector<std::string> cells;
+    std::stringstream row(line);
+    for (std::string cell; std::getline(row, cell, ',');) cells.push_back(cell);
+    if (column < 0) column = static_cast<int>(std::find(cells.begin(), cells.end(), "cycle_us") - cells.begin());
+    cells.erase(cells.begin() + column);
+    for (const auto& c : cells) out << c << ',';
+    out << '\n';
+  }
+  return out.str();
+}
+
+TEST(BipedRun, SameScenarioAndSeedGiveIdenticalLogs) {
+  const fs::path s = scenario("determinism",
+                              "robot: lola\nduration: 1.0\nseed: 5\nsensors: {noise: true, delay_cycles: 1}\n"
+                              "disturbances: [{type: push, t: 0.3, force: [40, 20, 0]}]\n");
+  const fs::path a = work_dir() / "det-a", b = work_dir() / "det-b";
+  ASSERT_EQ(biped("run " + s.string() + " --out " + a.string()).status, 0);
+  ASSERT_EQ(biped("run " + s.string() + " --out " + b.string()).status, 0);
+  const std::string la = slurp(a / "log.csv"), lb = slurp(b / "log.csv");
+  ASSERT_GT(la.size(), 1000u);
+  EXPECT_EQ(without_timing(la), without_timing(lb));
+  const fs::path c = work_dir() / "det-c";
+  ASSERT_EQ(biped("run " + s.string() + " --set seed=6 --out " + c.string()).status, 0);
+  EXPECT_NE(without_timing(la), without_timing(slurp(c / "log.csv"))) << "the seed drives the sensor noise";
+}
+
+TEST(BipedRun, ShippedScenariosRun) {
+  for (const char* name : {"lola-stand", "johnnie-stand"}) {
+    const fs::path out = work_dir() / name;
+    const Outcome o = biped("run " + biped::test::source_path(std::string("config/scenarios/") + name + ".yaml") +
+                            " --set duration=0.5 --out " + out.string());
+    EXPECT_EQ(o.status, 0) << o.err;
+    EXPECT_NE(o.out.find("no fall"), std::string::npos) << o.out;
+  }
+}
+
+}  // namespace

@@ -1,0 +1,70 @@
+#include "io/robot_config.hpp"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "io/yaml_reader.hpp"
+#include "test_support.hpp"
+
+namespace biped {
+namespace {
+
+Scenario scenario_with(const std::string& robot) {
+  Scenario s;
+  s.file = "test.yaml";
+  s.robot = robot;
+  s.duration = 1.0;
+  return s;
+}
+
+TEST(RobotConfig, BothRobotsHaveParameterFiles) {
+  const auto robots = known_robots();
+  EXPECT_NE(std::find(robots.begin(), robots.end(), "lola"), robots.end());
+  EXPECT_NE(std::find(robots.begin(), robots.end(), "johnnie"), robots.end());
+  for (const auto& name : robots) {
+    const RunConfig c = make_run_config(scenario_with(name));
+    EXPECT_TRUE(std::filesystem::exists(c.sim.world.robot_mjcf));
+    EXPECT_EQ(c.controller.model_path, c.sim.world.robot_mjcf);
+    EXPECT_GE(c.sim.drives.bandwidth_hz, 15.0);
+    EXPECT_LE(c.sim.drives.bandwidth_hz, 25.0);
+  }
+}
+
+TEST(RobotConfig, UnknownRobotListsTheKnownOnes) {
+  try {
+    make_run_config(scenario_with("asimo"));
+    FAIL();
+  } catch (const InputError& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find("test.yaml: key 'robot': unknown robot 'asimo'"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("lola"), std::string::npos);
+  }
+}
+
+TEST(RobotConfig, ScenarioOverridesControllerAndSimulationKeys) {
+  Scenario s = scenario_with("lola");
+  s.controller = YAML::Load("{stabilizer: false, ramp_time: 0.5}");
+  s.simulation = YAML::Load("{timestep: 0.0005, control_period: 0.001}");
+  const RunConfig c = make_run_config(s);
+  EXPECT_FALSE(c.controller.stabilizer);
+  EXPECT_DOUBLE_EQ(c.controller.standing.ramp_time, 0.5);
+  EXPECT_DOUBLE_EQ(c.sim.world.timestep, 0.0005);
+
+  s.controller = YAML::Load("{stabiliser: false}");
+  EXPECT_THROW(make_run_config(s), InputError);
+  s.controller = YAML::Node();
+  s.simulation = YAML::Load("{timestep: 0.0007}");
+  EXPECT_THROW(make_run_config(s), InputError);
+}
+
+TEST(RobotConfig, BareMjcfPathUsesDefaults) {
+  const RunConfig c = make_run_config(scenario_with(test::model_path("johnnie")));
+  EXPECT_EQ(c.robot, "johnnie");
+  EXPECT_TRUE(c.robot_file.empty());
+  EXPECT_THROW(make_run_config(scenario_with("/nonexistent/robot.xml")), InputError);
+}
+
+}  // namespace
+}  // namespace biped

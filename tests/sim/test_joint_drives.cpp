@@ -1,0 +1,89 @@
+#include "sim/joint_drives.hpp"
+
+#include <gtest/gtest.h>
+
+#include "sim/simulation.hpp"
+#include "test_support.hpp"
+
+namespace biped {
+namespace {
+
+// Gains follow from bandwidth, damping ratio and the inertia each joint sees in the stand pose.
+TEST(JointDrives, GainsGiveTheConfiguredBandwidth) {
+  const RobotModel model = test::load_model("lola");
+  DriveParams params;
+  params.bandwidth_hz = 20.0;
+  params.damping_ratio = 0.8;
+  const JointDrives drives(model, params);
+  RobotData data(model);
+  const mjModel* m = model.mj();
+  Eigen::Map<Eigen::VectorXd>(data.mj()->qpos, m->nq) = model.stand_qpos();
+  mj_forward(m, data.mj());
+  Eigen::MatrixXd M(m->nv, m->nv);
+  mj_fullM(m, M.data(), data.mj()->qM);
+  const double omega = 2 * M_PI * 20.0;
+  for (int i = 0; i < model.num_joints(); ++i) {
+    const int dof = model.joints()[i].dof_adr;
+    const double inertia = M(dof, dof);
+    EXPECT_GT(inertia, m->dof_armature[dof]) << "rotor inertia is part of what the drive moves";
+    EXPECT_NEAR(drives.kp()[i] / inertia, omega * omega, 1e-6 * omega * omega);
+    EXPECT_NEAR(drives.kd()[i] / inertia, 2 * 0.8 * omega, 1e-9 * omega);
+  }
+}
+
+TEST(JointDrives, TorqueSaturatesAtTheDriveLimit) {
+  const RobotModel model = test::load_model("lola");
+  JointDrives drives(model, {});
+  RobotData data(model);
+  const mjModel* m = model.mj();
+  Eigen::Map<Eigen::VectorXd>(data.mj()->qpos, m->nq) = model.stand_qpos();
+  Eigen::VectorXd far = model.stand_pose().array() + 1.0;
+  drives.set_targets(far, 0.001);
+  drives.set_targets(far, 0.001);  // same target twice: no velocity reference
+  drives.apply(m, data.mj());
+  for (int i = 0; i < model.num_joints(); ++i) {
+    const JointInfo& j = model.joints()[i];
+    int actuator = -1;
+    for (int a = 0; a < m->nu; ++a) {
+      if (m->actuator_trnid[2 * a] == j.mj_joint) actuator = a;
+    }
+    EXPECT_NEAR(std::abs(data.mj()->ctrl[actuator] * m->actuator_gear[6 * actuator]), j.torque_limit, 1e-9) << j.name;
+  }
+}
+
+// Step response of one joint of the standing robot: the 10-90 % rise time of a critically damped
+// loop is 3.36/ω, so a 15-25 Hz bandwidth means 21-36 ms.
+TEST(JointDrives, StepResponseRiseTimeMatchesTheBandwidth) {
+  const RobotModel model = test::load_model("lola");
+  SimulationParams p;
+  p.world.robot_mjcf = test::model_path("lola");
+  p.drives.bandwidth_hz = 20.0;
+  Simulation sim(p, model);
+  JointCommand cmd(model.num_joints());
+  cmd.position = model.stand_pose();
+  for (int i = 0; i < 300; ++i) {
+    sim.command(cmd);
+    sim.advance();
+  }
+  const int elbow = model.joint_index("left_elbow");
+  const int adr = model.joints()[elbow].qpos_adr;
+  const double start = sim.data()->qpos[adr];
+  const double step = -0.2;
+  cmd.position[elbow] += step;
+  sim.command(cmd);
+  sim.command(cmd);  // a pure position step, no velocity reference
+  double t10 = -1, t90 = -1;
+  for (int i = 1; i <= 300; ++i) {
+    sim.advance();
+    const double progress = (sim.data()->qpos[adr] - start) / step;
+    if (t10 < 0 && progress >= 0.1) t10 = i * 1e-3;
+    if (t90 < 0 && progress >= 0.9) t90 = i * 1e-3;
+  }
+  ASSERT_GT(t90, 0.0) << "the joint never reached 90 % of the step";
+  const double rise = t90 - t10;
+  EXPECT_GT(rise, 3.36 / (2 * M_PI * 25.0));
+  EXPECT_LT(rise, 3.36 / (2 * M_PI * 15.0));
+}
+
+}  // namespace
+}  // namespace biped
