@@ -21,11 +21,17 @@ std::string resolve(const std::string& path, const std::string& relative_to_file
 
 void read_simulation(const YamlReader& r, const YAML::Node& sim, SimulationParams& p) {
   r.expect_keys(sim, "simulation", {"timestep", "control_period", "ground_friction", "contact_timeconst",
-                                    "contact_dampratio"});
+                                    "contact_dampratio", "sole_stiffness_per_foot", "sole_damping_per_foot"});
   if (!sim) return;
   p.world.timestep = r.positive_or(sim, "simulation", "timestep", p.world.timestep);
   p.control_period = r.positive_or(sim, "simulation", "control_period", p.control_period);
   p.world.ground_friction = r.positive_or(sim, "simulation", "ground_friction", p.world.ground_friction);
+  p.sole_contact.friction = p.world.ground_friction;
+  p.sole_contact.stiffness_per_foot =
+      r.positive_or(sim, "simulation", "sole_stiffness_per_foot", p.sole_contact.stiffness_per_foot);
+  p.sole_contact.damping_per_foot = r.non_negative_or(sim, "simulation", "sole_damping_per_foot", p.sole_contact.damping_per_foot);
+  p.sole_contact.tangential_stiffness_per_foot = p.sole_contact.stiffness_per_foot;
+  p.sole_contact.tangential_damping_per_foot = p.sole_contact.damping_per_foot;
   p.world.contact_timeconst = r.positive_or(sim, "simulation", "contact_timeconst", p.world.contact_timeconst);
   p.world.contact_dampratio = r.positive_or(sim, "simulation", "contact_dampratio", p.world.contact_dampratio);
   if (p.world.contact_timeconst < 2.0 * p.world.timestep) {

@@ -7,8 +7,14 @@
 namespace biped {
 namespace {
 
+// The soles touch the ground through SoleContact, not through MuJoCo's contacts.
 RobotModel build_plant(const SimulationParams& p) {
-  return RobotModel::adopt(build_world(p.world), p.world.robot_mjcf, p.software_limit_margin_rad);
+  RobotModel plant = RobotModel::adopt(build_world(p.world), p.world.robot_mjcf, p.software_limit_margin_rad);
+  mjModel* m = const_cast<mjModel*>(plant.mj());
+  for (Side side : kSides) {
+    for (int g : plant.foot(side).sole_geoms) m->geom_contype[g] = m->geom_conaffinity[g] = 0;
+  }
+  return plant;
 }
 
 std::vector<int> map_joints(const RobotModel& plant, const RobotModel& controller_model) {
@@ -66,6 +72,7 @@ Simulation::Simulation(const SimulationParams& params, const RobotModel& control
       plant_joint_of_(map_joints(plant_, controller_model)),
       drives_(plant_, params.drives),
       sensors_(plant_, plant_joint_of_, sensor_params(params, plant_)),
+      sole_contact_(plant_, params.world.terrain, params.sole_contact),
       plant_setpoint_(plant_.stand_pose()),
       fall_detector_(plant_, params.world.terrain, 1.0) {
   const double ratio = params.control_period / params.world.timestep;
@@ -89,8 +96,13 @@ void Simulation::reset() {
   d->qpos[0] = 0.0;
   d->qpos[1] = 0.0;
   mj_kinematics(m, d);
-  d->qpos[2] -= sole_clearance(plant_, d, params_.world.terrain);
+  // Start in static equilibrium: the soles sunk by the deflection that carries the weight.
+  const double sink = plant_.total_mass() * std::abs(m->opt.gravity[2]) / (2.0 * params_.sole_contact.stiffness_per_foot);
+  d->qpos[2] -= sole_clearance(plant_, d, params_.world.terrain) + sink;
+  sole_contact_.reset();
   mj_forward(m, d);
+  sole_contact_.apply(m, d);
+  mj_forward(m, d);  // sensors now see the contact forces
   standing_pelvis_height_ = d->xpos[3 * plant_.pelvis_body() + 2] - terrain_height(params_.world.terrain, 0.0);
   fall_detector_ = FallDetector(plant_, params_.world.terrain, standing_pelvis_height_);
   plant_setpoint_ = plant_.stand_pose();
@@ -109,13 +121,16 @@ void Simulation::command(const JointCommand& setpoints) {
 void Simulation::advance() {
   const mjModel* m = plant_.mj();
   mjData* d = data_.get();
-  for (std::size_t k = 0; k < params_.pushes.size(); ++k) {
-    const Push& push = params_.pushes[k];
-    const bool active = d->time >= push.t - 1e-9 && d->time < push.t + push.duration - 1e-9;
-    for (int a = 0; a < 3; ++a) d->xfrc_applied[6 * push_body_[k] + a] = active ? push.force[a] : 0.0;
-  }
   for (int step = 0; step < steps_per_period_; ++step) {
     mj_step1(m, d);
+    mju_zero(d->xfrc_applied, 6 * m->nbody);
+    for (std::size_t k = 0; k < params_.pushes.size(); ++k) {
+      const Push& push = params_.pushes[k];
+      if (d->time >= push.t - 1e-9 && d->time < push.t + push.duration - 1e-9) {
+        for (int a = 0; a < 3; ++a) d->xfrc_applied[6 * push_body_[k] + a] += push.force[a];
+      }
+    }
+    sole_contact_.apply(m, d);
     drives_.apply(m, d);
     mj_step2(m, d);
   }
@@ -129,7 +144,7 @@ double Simulation::foot_contact_force(Side side) const {
   const mjModel* m = plant_.mj();
   const mjData* d = data_.get();
   const auto& bodies = plant_.foot(side).bodies_below_sensor;
-  double total = 0.0;
+  double total = sole_contact_.normal_force(side);
   for (int i = 0; i < d->ncon; ++i) {
     const int b1 = m->geom_bodyid[d->contact[i].geom1];
     const int b2 = m->geom_bodyid[d->contact[i].geom2];

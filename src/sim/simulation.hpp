@@ -14,6 +14,7 @@
 #include "sim/fall_detection.hpp"
 #include "sim/joint_drives.hpp"
 #include "sim/sensor_emulation.hpp"
+#include "sim/sole_contact.hpp"
 #include "sim/world.hpp"
 
 namespace biped {
@@ -29,6 +30,7 @@ struct SimulationParams {
   WorldSpec world;
   double control_period = 0.001;  // [s], a whole number of physics steps
   DriveParams drives;
+  SoleContactParams sole_contact;
   int encoder_bits = 17;                       // default resolution
   std::map<std::string, int> encoder_bits_of;  // per joint name, overrides the default
   bool sensor_noise = false;
@@ -62,6 +64,7 @@ class Simulation {
   const mjData* data() const { return data_.get(); }
   const JointDrives& drives() const { return drives_; }
   const SensorEmulation& sensors() const { return sensors_; }
+  const SoleContact& sole_contact() const { return sole_contact_; }
   // Ground-truth normal contact force on a foot [N].
   double foot_contact_force(Side side) const;
   double standing_pelvis_height() const { return standing_pelvis_height_; }
@@ -79,6 +82,7 @@ class Simulation {
   std::vector<int> plant_joint_of_;
   JointDrives drives_;
   SensorEmulation sensors_;
+  SoleContact sole_contact_;
   std::vector<int> push_body_;
   Eigen::VectorXd plant_setpoint_;
   int steps_per_period_ = 1;
