@@ -23,9 +23,7 @@ demo: build
 	@$(BUILD_DIR)/biped run $(SCENARIO)
 
 bench: build
-	@$(BUILD_DIR)/bench/biped_benchmarks
-	@$(BUILD_DIR)/biped bench --robot lola
-	@$(BUILD_DIR)/biped bench --robot johnnie
+	@$(BUILD_DIR)/bench/biped_benchmarks --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
 
 clean:
 	rm -rf $(BUILD_DIR)
