@@ -5,16 +5,10 @@
 #include <Eigen/Geometry>
 #include <array>
 
+#include "math/wrench.hpp"
 #include "model/robot_model.hpp"
 
 namespace biped {
-
-// A 6-axis wrench. For the foot F/T sensors: the wrench the sole exerts on the ankle side,
-// expressed in the sensor frame (standing still, force.z() > 0 is the load carried).
-struct Wrench {
-  Eigen::Vector3d force = Eigen::Vector3d::Zero();
-  Eigen::Vector3d torque = Eigen::Vector3d::Zero();
-};
 
 struct SensorData {
   double time = 0.0;                // [s] since the start of the run

@@ -1,0 +1,60 @@
+#include "planning/step_sequence_planner.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace biped {
+
+VelocityCommand saturate(const VelocityCommand& c, const CommandLimits& limits, bool& saturated) {
+  VelocityCommand out;
+  out.vx = std::clamp(c.vx, limits.vx_min, limits.vx_max);
+  out.vy = std::clamp(c.vy, -limits.vy_max, limits.vy_max);
+  out.omega = std::clamp(c.omega, -limits.omega_max, limits.omega_max);
+  saturated = out.vx != c.vx || out.vy != c.vy || out.omega != c.omega;
+  return out;
+}
+
+PlanarPose advance(const PlanarPose& pose, const VelocityCommand& v, double duration) {
+  const double dyaw = v.omega * duration;
+  // Displacement in the starting heading frame of a constant body velocity turning at ω.
+  double dx, dy;
+  if (std::abs(dyaw) < 1e-9) {
+    dx = v.vx * duration;
+    dy = v.vy * duration;
+  } else {
+    const double s = std::sin(dyaw), c = std::cos(dyaw);
+    dx = (v.vx * s + v.vy * (c - 1.0)) / v.omega;
+    dy = (v.vx * (1.0 - c) + v.vy * s) / v.omega;
+  }
+  const double cy = std::cos(pose.yaw), sy = std::sin(pose.yaw);
+  PlanarPose out;
+  out.position = pose.position + Eigen::Vector2d(cy * dx - sy * dy, sy * dx + cy * dy);
+  out.yaw = pose.yaw + dyaw;
+  return out;
+}
+
+PlanarPose heading_of_stance(const Footstep& stance, double step_width) {
+  const double lateral = (stance.side == Side::Left ? -0.5 : 0.5) * step_width;
+  PlanarPose h;
+  h.yaw = stance.yaw;
+  h.position = stance.position + lateral * Eigen::Vector2d(-std::sin(stance.yaw), std::cos(stance.yaw));
+  return h;
+}
+
+void plan_steps(const Footstep& stance, const VelocityCommand& v, const StepParameters& p, double first_touchdown,
+                int count, std::array<Footstep, 3>& steps) {
+  PlanarPose h = heading_of_stance(stance, p.step_width);
+  Side side = stance.side == Side::Left ? Side::Right : Side::Left;
+  for (int k = 0; k < std::min(count, 3); ++k) {
+    h = advance(h, v, p.step_time);
+    const double lateral = (side == Side::Left ? 0.5 : -0.5) * p.step_width;
+    Footstep& f = steps[k];
+    f.side = side;
+    f.yaw = h.yaw;
+    f.position = h.position + lateral * Eigen::Vector2d(-std::sin(h.yaw), std::cos(h.yaw));
+    f.touchdown = first_touchdown + k * p.step_time;
+    side = side == Side::Left ? Side::Right : Side::Left;
+  }
+}
+
+}  // namespace biped

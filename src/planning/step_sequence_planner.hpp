@@ -1,0 +1,39 @@
+#pragma once
+// Step sequence planner (Fig. 3): from the joystick command, the next three footsteps (position,
+// heading, touchdown time) along the path of a "heading frame" that moves with the commanded
+// velocity (vx, vy in the heading frame, ω turning), one step time per step. Commands outside the
+// feasible range (from the off-line tables) are saturated, and the caller is told.
+#include <array>
+
+#include "planning/footstep.hpp"
+
+namespace biped {
+
+struct CommandLimits {
+  double vx_min = -0.3, vx_max = 1.0;  // [m/s]
+  double vy_max = 0.15;                // [m/s] either side
+  double omega_max = 0.5;              // [rad/s] either side
+};
+
+// The planner's view of the joystick (kept free of the controller's types).
+struct VelocityCommand {
+  double vx = 0.0, vy = 0.0, omega = 0.0;
+};
+
+// Returns the command clamped to the limits; `saturated` tells whether anything was clamped.
+VelocityCommand saturate(const VelocityCommand& command, const CommandLimits& limits, bool& saturated);
+
+// The heading frame after moving for `duration` with a constant command (exact arc).
+PlanarPose advance(const PlanarPose& pose, const VelocityCommand& v, double duration);
+
+// The heading frame that has `stance` at its nominal place (half a step width to the side).
+PlanarPose heading_of_stance(const Footstep& stance, double step_width);
+
+// The next `count` (≤ 3) footsteps, alternating, the first by the foot opposite `stance` and
+// touching down at `first_touchdown`. The heading frame starts at the stance foot's nominal place
+// and advances one step time per step; a zero command places the swing foot beside the stance foot
+// (a stop).
+void plan_steps(const Footstep& stance, const VelocityCommand& v, const StepParameters& p, double first_touchdown,
+                int count, std::array<Footstep, 3>& steps);
+
+}  // namespace biped

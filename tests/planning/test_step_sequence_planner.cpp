@@ -1,0 +1,68 @@
+#include "planning/step_sequence_planner.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace biped {
+namespace {
+
+TEST(StepSequencePlanner, SaturatesInfeasibleCommands) {
+  bool saturated = false;
+  const VelocityCommand s = saturate({3.0, -1.0, 2.0}, CommandLimits{}, saturated);
+  EXPECT_TRUE(saturated);
+  EXPECT_DOUBLE_EQ(s.vx, CommandLimits{}.vx_max);
+  EXPECT_DOUBLE_EQ(s.vy, -CommandLimits{}.vy_max);
+  EXPECT_DOUBLE_EQ(s.omega, CommandLimits{}.omega_max);
+  saturate({0.5, 0.0, 0.1}, CommandLimits{}, saturated);
+  EXPECT_FALSE(saturated);
+}
+
+TEST(StepSequencePlanner, StraightStepsAdvanceByVelocityTimesStepTime) {
+  StepParameters p;
+  std::array<Footstep, 3> steps;
+  plan_steps(Footstep{Side::Left, {0.0, 0.09}, 0.0, 0.0}, {0.5, 0.0, 0.0}, p, 1.0, 3, steps);
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_NEAR(steps[k].position.x(), 0.5 * p.step_time * (k + 1), 1e-12);
+    EXPECT_NEAR(std::abs(steps[k].position.y()), 0.5 * p.step_width, 1e-12);
+    EXPECT_NEAR(steps[k].touchdown, 1.0 + k * p.step_time, 1e-12);
+  }
+  EXPECT_EQ(steps[0].side, Side::Right);
+  EXPECT_EQ(steps[1].side, Side::Left);
+  EXPECT_LT(steps[0].position.y(), 0.0);
+}
+
+// A constant turning command: the path has radius v/ω; each foot's prints lie on the circles
+// R ∓ w/2 about the same centre (within 2 %).
+TEST(StepSequencePlanner, ConstantTurnPlacesFootprintsOnACircle) {
+  const VelocityCommand v{0.4, 0.0, 0.25};
+  const double radius = v.vx / v.omega;
+  const Eigen::Vector2d centre(0.0, radius);
+  StepParameters p;
+  Footstep stance{Side::Left, {0.0, 0.5 * p.step_width}, 0.0, 0.0};
+  std::array<Footstep, 3> steps;
+  for (int round = 0; round < 10; ++round) {
+    plan_steps(stance, v, p, 0.0, 3, steps);
+    for (const Footstep& f : steps) {
+      const double expected = f.side == Side::Left ? radius - 0.5 * p.step_width : radius + 0.5 * p.step_width;
+      EXPECT_NEAR((f.position - centre).norm(), expected, 0.02 * expected) << round;
+      EXPECT_NEAR((heading_of_stance(f, p.step_width).position - centre).norm(), radius, 0.02 * radius);
+    }
+    stance = steps[0];
+  }
+}
+
+TEST(StepSequencePlanner, ZeroCommandPlacesTheFeetSideBySide) {
+  StepParameters p;
+  const Footstep left{Side::Left, {1.0, 0.3}, 0.2, 0.0};
+  std::array<Footstep, 3> steps;
+  plan_steps(left, {}, p, 0.0, 1, steps);
+  const Eigen::Vector2d gap = left.position - steps[0].position;
+  EXPECT_EQ(steps[0].side, Side::Right);
+  EXPECT_NEAR(gap.norm(), p.step_width, 1e-12);
+  EXPECT_NEAR(std::atan2(gap.y(), gap.x()), left.yaw + M_PI / 2, 1e-12) << "right beside left, square to its heading";
+  EXPECT_NEAR(steps[0].yaw, left.yaw, 1e-12);
+}
+
+}  // namespace
+}  // namespace biped
