@@ -41,6 +41,9 @@ struct ControllerStatus {
   bool fault = false;           // a sensor fault was detected; set-points are held safe
   const char* fault_reason = "";
   std::array<Wrench, 2> desired_wrench;  // contact wrench the controller aims for, per foot
+  Eigen::Vector3d com_desired = Eigen::Vector3d::Zero();  // planned CoM (controller frame)
+  Eigen::Vector2d zmp_desired = Eigen::Vector2d::Zero();  // planned ZMP (controller frame)
+  bool command_saturated = false;                         // the walk command was clamped
   int steps_completed = 0;
 };
 

@@ -46,8 +46,33 @@ void read_simulation(const YamlReader& r, const YAML::Node& sim, SimulationParam
 }
 
 void read_controller(const YamlReader& r, const YAML::Node& c, ControllerConfig& p) {
-  r.expect_keys(c, "controller", {"model", "stabilizer", "ramp_time", "software_limit_margin_deg"});
+  r.expect_keys(c, "controller", {"type", "model", "stabilizer", "ramp_time", "software_limit_margin_deg", "step_time",
+                                  "double_support_ratio", "clearance", "start_shift", "arm_swing_gain", "task_gain",
+                                  "null_space_gain", "joint_velocity_limit", "limits"});
   if (!c) return;
+  p.type = r.text_or(c, "controller", "type", p.type);
+  if (p.type != "walking" && p.type != "standing") {
+    r.fail(c["type"], "controller.type", "unknown controller '" + p.type + "' (known: walking, standing)");
+  }
+  WalkingControllerParams& w = p.walking;
+  w.step.step_time = r.positive_or(c, "controller", "step_time", w.step.step_time);
+  w.step.double_support_ratio = r.positive_or(c, "controller", "double_support_ratio", w.step.double_support_ratio);
+  if (w.step.double_support_ratio >= 0.8) r.fail(c["double_support_ratio"], "controller.double_support_ratio", "must be below 0.8");
+  w.step.clearance = r.non_negative_or(c, "controller", "clearance", w.step.clearance);
+  w.start_shift = r.non_negative_or(c, "controller", "start_shift", w.start_shift);
+  w.arm_swing_gain = r.non_negative_or(c, "controller", "arm_swing_gain", w.arm_swing_gain);
+  w.rmrc.task_gain = r.positive_or(c, "controller", "task_gain", w.rmrc.task_gain);
+  if (w.rmrc.task_gain > 1.0) r.fail(c["task_gain"], "controller.task_gain", "must be at most 1 (fraction of the error per cycle)");
+  w.rmrc.null_space_gain = r.non_negative_or(c, "controller", "null_space_gain", w.rmrc.null_space_gain);
+  w.rmrc.joint_velocity_limit = r.positive_or(c, "controller", "joint_velocity_limit", w.rmrc.joint_velocity_limit);
+  const YAML::Node limits = r.mapping(c, "controller", "limits");
+  r.expect_keys(limits, "controller.limits", {"vx_min", "vx_max", "vy_max", "omega_max"});
+  if (limits) {
+    w.limits.vx_min = r.number_or(limits, "controller.limits", "vx_min", w.limits.vx_min);
+    w.limits.vx_max = r.non_negative_or(limits, "controller.limits", "vx_max", w.limits.vx_max);
+    w.limits.vy_max = r.non_negative_or(limits, "controller.limits", "vy_max", w.limits.vy_max);
+    w.limits.omega_max = r.non_negative_or(limits, "controller.limits", "omega_max", w.limits.omega_max);
+  }
   if (c["model"]) {
     p.model_path = resolve(r.text(c, "controller", "model"), r.file());
     if (!fs::exists(p.model_path)) r.fail(c["model"], "controller.model", "no such file: " + p.model_path);
@@ -69,10 +94,12 @@ void read_robot_file(const std::string& file, RunConfig& config) {
   read_simulation(r, r.mapping(root, "", "simulation"), config.sim);
 
   const YAML::Node drives = r.mapping(root, "", "drives");
-  r.expect_keys(drives, "drives", {"bandwidth_hz", "damping_ratio"});
+  r.expect_keys(drives, "drives", {"bandwidth_hz", "velocity_loop_ratio", "integral_ratio"});
   if (drives) {
-    config.sim.drives.bandwidth_hz = r.positive_or(drives, "drives", "bandwidth_hz", config.sim.drives.bandwidth_hz);
-    config.sim.drives.damping_ratio = r.positive_or(drives, "drives", "damping_ratio", config.sim.drives.damping_ratio);
+    DriveParams& dp = config.sim.drives;
+    dp.bandwidth_hz = r.positive_or(drives, "drives", "bandwidth_hz", dp.bandwidth_hz);
+    dp.velocity_loop_ratio = r.positive_or(drives, "drives", "velocity_loop_ratio", dp.velocity_loop_ratio);
+    dp.integral_ratio = r.non_negative_or(drives, "drives", "integral_ratio", dp.integral_ratio);
   }
 
   const YAML::Node encoders = r.mapping(root, "", "encoders");
@@ -162,6 +189,7 @@ RunConfig make_run_config(const Scenario& s) {
   config.sim.faults = s.faults;
   config.sim.seed = s.seed;
   config.sim.software_limit_margin_rad = config.controller.software_limit_margin_rad;
+  config.controller.walking.rmrc.dt = config.sim.control_period;
   return config;
 }
 

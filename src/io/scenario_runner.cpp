@@ -32,7 +32,8 @@ RobotModel load_controller_model(const RunConfig& config) {
 }
 
 std::unique_ptr<Controller> make_controller(const RunConfig& config, const RobotModel& model) {
-  return std::make_unique<StandingController>(model, config.controller.standing);
+  if (config.controller.type == "standing") return std::make_unique<StandingController>(model, config.controller.standing);
+  return std::make_unique<WalkingController>(model, config.controller.walking);
 }
 
 void check_scenario_against_model(const Scenario& s, const RobotModel& model) {
@@ -74,7 +75,7 @@ ScenarioResult run_scenario(const Scenario& scenario, const RunConfig& config, c
   result.run = run_closed_loop(sim, *controller, scenario.commands, options, &observers);
   result.summary = recorder.summary(config.robot, scenario.name, result.run, controller->status());
   result.summary["seed"] = scenario.seed;
-  result.summary["controller"] = "standing";
+  result.summary["controller"] = config.controller.type;
   if (summary_file) {
     summary_file->stream() << result.summary.dump(2) << '\n';
     log_file->commit();

@@ -8,7 +8,7 @@ namespace biped {
 // Uniform cubic B-spline: on interval j with u ∈ [0, 1], x = Σ_k c_{j+k} B_k(u). At a knot,
 // x = (c_k + 4 c_{k+1} + c_{k+2})/6, ẋ = (c_{k+2} − c_k)/(2h), ẍ = (c_k − 2 c_{k+1} + c_{k+2})/h².
 // Unknowns: c_0 … c_{N+2}, δ₁, δ₂ (N+5). Rows: x, ẋ, ẍ at t0 (3); the ZMP equation at knots
-// 0 … N−1 (N); x = p_end and ẋ = 0 at the end (2).
+// 0 … N−1 (N); x = x_end and ẋ = 0 at the end (2).
 ComCollocation::ComCollocation(int intervals)
     : intervals_(intervals),
       system_(Eigen::MatrixXd::Zero(intervals + 5, intervals + 5)),
@@ -41,14 +41,14 @@ void ComCollocation::prepare(double body_height, double gravity, const Eigen::Ve
   lu_.compute(system_);
 }
 
-void ComCollocation::solve(const Eigen::VectorXd& rhs, double x0, double v0, double a0, double zmp_end,
+void ComCollocation::solve(const Eigen::VectorXd& rhs, double x0, double v0, double a0, double x_end,
                            Eigen::VectorXd& coefficients, double& amplitude1, double& amplitude2) {
   const int n = intervals_;
   b_[0] = x0;
   b_[1] = v0;
   b_[2] = a0;
   b_.segment(3, n) = rhs.head(n);
-  b_[n + 3] = zmp_end;
+  b_[n + 3] = x_end;
   b_[n + 4] = 0.0;
   solution_.noalias() = lu_.solve(b_);
   coefficients = solution_.head(n + 3);

@@ -3,7 +3,7 @@
 // spline collocation: the upper-body mass point's coordinate x_b(t) is a uniform cubic B-spline over
 // the planning horizon and the ZMP equation z_b ẍ_b − g x_b = −g p̃(t) − (leg terms) is required at
 // the spline knots. Boundary conditions: the current position, velocity and acceleration (so the
-// plan continues the previous one), and the body at rest over the final ZMP at the end.
+// plan continues the previous one), and the body at rest at a given position at the end.
 //
 // A given initial state and a given ZMP reference over-determine an unstable system (the
 // divergent mode e^{ωt} would grow), so the ZMP reference is modified at the start of the plan by
@@ -30,9 +30,9 @@ class ComCollocation {
   // knots (entries 0..N−1 used). No allocation.
   void prepare(double body_height, double gravity, const Eigen::VectorXd& shape1, const Eigen::VectorXd& shape2);
 
-  // Solves one axis: `rhs[k]` = −g p(t_k) − leg terms, k = 0..N−1; x0, v0, a0: state at t0; zmp_end:
-  // final ZMP. Stores the spline control points (size N+3) and the two ZMP shape amplitudes.
-  void solve(const Eigen::VectorXd& rhs, double x0, double v0, double a0, double zmp_end,
+  // Solves one axis: `rhs[k]` = −g p(t_k) − leg terms, k = 0..N−1; x0, v0, a0: state at t0;
+  // x_end: the body's final rest position. Stores the spline control points (size N+3) and the two ZMP shape amplitudes.
+  void solve(const Eigen::VectorXd& rhs, double x0, double v0, double a0, double x_end,
              Eigen::VectorXd& coefficients, double& amplitude1, double& amplitude2);
 
   // Position, velocity and acceleration of a spline at time t (clamped to the horizon).

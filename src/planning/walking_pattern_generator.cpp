@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 #include <Eigen/Geometry>
 
@@ -105,13 +106,21 @@ void WalkingPatternGenerator::replan(double t0, const std::array<Footstep, 2>& f
     shape2_[k] = b2 * weight / g;
   }
   collocation_.prepare(body_height_, g, shape1_, shape2_);
+  // At rest at the end, the body mass sits where the model's ZMP is the final reference ZMP:
+  // x_b = p + (1/m_b) Σ_i m_i (p − x_i) with the legs standing still.
   Eigen::Vector2d p_end;
   double share;
   int phase;
   reference_zmp(t_end, p_end, share, phase);
-  collocation_.solve(rhs_x_, body_x.position, body_x.velocity, body_x.acceleration, p_end.x(), coeff_x_,
+  Eigen::Vector2d body_end = p_end;
+  for (Side side : kSides) {
+    FootReference foot;
+    foot_at(side, t_end, foot);
+    body_end += params_.leg_mass / params_.body_mass * (p_end - foot.position.head<2>());
+  }
+  collocation_.solve(rhs_x_, body_x.position, body_x.velocity, body_x.acceleration, body_end.x(), coeff_x_,
                      amplitude1_.x(), amplitude2_.x());
-  collocation_.solve(rhs_y_, body_y.position, body_y.velocity, body_y.acceleration, p_end.y(), coeff_y_,
+  collocation_.solve(rhs_y_, body_y.position, body_y.velocity, body_y.acceleration, body_end.y(), coeff_y_,
                      amplitude1_.y(), amplitude2_.y());
 }
 
@@ -205,6 +214,10 @@ void WalkingPatternGenerator::sample(double t, PatternSample& out) const {
   const double g = params_.gravity;
   collocation_.evaluate(coeff_x_, t, out.body_x.position, out.body_x.velocity, out.body_x.acceleration);
   collocation_.evaluate(coeff_y_, t, out.body_y.position, out.body_y.velocity, out.body_y.acceleration);
+  if (t >= collocation_.t_end()) {  // the plan ends at rest and stays there
+    out.body_x.velocity = out.body_x.acceleration = 0.0;
+    out.body_y.velocity = out.body_y.acceleration = 0.0;
+  }
 
   for (Side side : kSides) foot_at(side, t, out.feet[index_of(side)]);
 
@@ -276,6 +289,42 @@ void WalkingPatternGenerator::sample(double t, PatternSample& out) const {
     out.contact_wrench[k].force = yaw.transpose() * (force - below);
     out.contact_wrench[k].torque = yaw.transpose() * torque;
   }
+}
+
+}  // namespace biped
+
+namespace biped {
+
+PatternGeneratorParams simplified_model_of(const RobotModel& model) {
+  const mjModel* m = model.mj();
+  RobotData data(model);
+  mjData* d = data.mj();
+  Eigen::Map<Eigen::VectorXd>(d->qpos, m->nq) = model.stand_qpos();
+  mj_kinematics(m, d);
+  mj_comPos(m, d);
+  PatternGeneratorParams p;
+  double legs = 0.0, leg_com_height = 0.0, ankle_height = 0.0;
+  for (Side side : kSides) {
+    const std::string hip = std::string(name_of(side)) + "_hip_yaw";
+    const int joint = mj_name2id(m, mjOBJ_JOINT, hip.c_str());
+    if (joint < 0) throw ModelError(model.path() + ": no joint '" + hip + "' (root of the leg)");
+    const int leg = m->jnt_bodyid[joint];
+    const FootInfo& foot = model.foot(side);
+    const double ankle_z = d->xpos[3 * foot.body + 2];
+    const double sole_z = d->site_xpos[3 * foot.sensor_site + 2] + foot.sole_z;
+    legs += m->body_subtreemass[leg];
+    leg_com_height += 0.5 * (d->subtree_com[3 * leg + 2] - ankle_z);
+    ankle_height += 0.5 * (ankle_z - sole_z);
+    p.mass_below_sensor = foot.mass_below_sensor;
+    p.sensor_in_foot = Eigen::Vector3d(m->site_pos + 3 * foot.sensor_site);
+    p.zmp_offset_x = p.sensor_in_foot.x() + 0.5 * (foot.sole_x_min + foot.sole_x_max);
+  }
+  p.leg_mass = 0.5 * legs;
+  p.body_mass = model.total_mass() - legs;
+  p.leg_com_height = leg_com_height;
+  p.ankle_height = ankle_height;
+  p.gravity = std::abs(m->opt.gravity[2]);
+  return p;
 }
 
 }  // namespace biped

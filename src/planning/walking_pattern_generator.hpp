@@ -108,3 +108,11 @@ class WalkingPatternGenerator {
 };
 
 }  // namespace biped
+
+namespace biped {
+
+// The simplified model's masses and the foot geometry, measured on the robot model in its
+// "stand" keyframe: leg = subtree of the hip yaw joint's body, body = everything else.
+PatternGeneratorParams simplified_model_of(const RobotModel& model);
+
+}  // namespace biped

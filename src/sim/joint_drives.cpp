@@ -3,27 +3,38 @@
 #include <algorithm>
 #include <cmath>
 
+#include <Eigen/LU>
+
 namespace biped {
 
 JointDrives::JointDrives(const RobotModel& plant, const DriveParams& params)
     : plant_(plant),
-      kp_(plant.num_joints()),
-      kd_(plant.num_joints()),
+      kv_(plant.num_joints()),
+      ki_(plant.num_joints()),
       torque_limit_(plant.num_joints()),
       actuator_(plant.num_joints()),
       target_(plant.stand_pose()),
-      target_rate_(Eigen::VectorXd::Zero(plant.num_joints())) {
+      target_rate_(Eigen::VectorXd::Zero(plant.num_joints())),
+      integral_(Eigen::VectorXd::Zero(plant.num_joints())) {
   const mjModel* m = plant.mj();
   RobotData data(plant);
   mjData* d = data.mj();
   Eigen::Map<Eigen::VectorXd>(d->qpos, m->nq) = plant.stand_qpos();
   mj_forward(m, d);  // fills qM (rotor inertia included through armature)
-  const double omega = 2.0 * M_PI * params.bandwidth_hz;
+  // The inertia a joint's drive accelerates when everything else is free to move (floating base):
+  // 1/(M⁻¹)_ii. It is the smallest the drive ever sees, so the velocity loop stays stable at the
+  // physics step; in stance the robot's mass adds to it and the integrator holds the load.
+  Eigen::MatrixXd M(m->nv, m->nv);
+  mj_fullM(m, M.data(), d->qM);
+  const Eigen::MatrixXd M_inverse = M.inverse();
+  const double omega_p = 2.0 * M_PI * params.bandwidth_hz;
+  const double omega_v = params.velocity_loop_ratio * omega_p;
+  position_gain_ = omega_p;
   for (int i = 0; i < plant.num_joints(); ++i) {
     const JointInfo& j = plant.joints()[i];
-    const double inertia = d->qM[m->dof_Madr[j.dof_adr]];
-    kp_[i] = inertia * omega * omega;
-    kd_[i] = 2.0 * params.damping_ratio * inertia * omega;
+    const double inertia = 1.0 / M_inverse(j.dof_adr, j.dof_adr);
+    kv_[i] = inertia * omega_v;
+    ki_[i] = kv_[i] * params.integral_ratio * omega_v;
     torque_limit_[i] = j.torque_limit;
     actuator_[i] = -1;
     for (int a = 0; a < m->nu; ++a) {
@@ -31,6 +42,12 @@ JointDrives::JointDrives(const RobotModel& plant, const DriveParams& params)
     }
     if (actuator_[i] < 0) throw ModelError(plant.path() + ": joint '" + j.name + "' has no motor actuator");
   }
+}
+
+void JointDrives::reset() {
+  integral_.setZero();
+  target_rate_.setZero();
+  has_target_ = false;
 }
 
 void JointDrives::set_targets(const Eigen::VectorXd& position, double control_period) {
@@ -41,13 +58,17 @@ void JointDrives::set_targets(const Eigen::VectorXd& position, double control_pe
   has_target_ = true;
 }
 
-void JointDrives::apply(const mjModel* m, mjData* d) const {
+void JointDrives::apply(const mjModel* m, mjData* d, double dt) {
   const auto& joints = plant_.joints();
   for (int i = 0; i < static_cast<int>(joints.size()); ++i) {
     const double q = d->qpos[joints[i].qpos_adr];
     const double qd = d->qvel[joints[i].dof_adr];
-    double tau = kp_[i] * (target_[i] - q) + kd_[i] * (target_rate_[i] - qd);
-    if (torque_limit_[i] > 0.0) tau = std::clamp(tau, -torque_limit_[i], torque_limit_[i]);
+    const double velocity_error = position_gain_ * (target_[i] - q) + target_rate_[i] - qd;
+    const double unsaturated = kv_[i] * velocity_error + ki_[i] * integral_[i];
+    const double limit = torque_limit_[i] > 0.0 ? torque_limit_[i] : std::abs(unsaturated);
+    const double tau = std::clamp(unsaturated, -limit, limit);
+    // Anti-windup: the integrator holds while the drive is saturated.
+    if (tau == unsaturated) integral_[i] += velocity_error * dt;
     d->ctrl[actuator_[i]] = tau / m->actuator_gear[6 * actuator_[i]];
   }
 }

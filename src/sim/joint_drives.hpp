@@ -1,8 +1,12 @@
 #pragma once
-// The robot's own decentralized joint position controllers: a PD law per joint with torque
-// saturation, evaluated every physics step. Gains come from a closed-loop bandwidth and damping
-// ratio and the inertia each joint sees in the reference pose (rotor inertia included), so the
-// servos are as stiff as the real ones, not infinitely stiff.
+// The robot's own decentralized joint position controllers, as on LOLA: a cascade of a
+// proportional position loop and a proportional-integral velocity loop (the current loop is taken
+// as ideal), with torque saturation, evaluated every physics step:
+//   v_ref = K_p (q_d − q) + q̇_d,   τ = sat(K_v (v_ref − q̇) + K_i ∫(v_ref − q̇) dt)
+// Gains come from the loop bandwidths and the inertia J each joint's drive moves in the reference
+// pose with the floating base free (rotor inertia included): K_p = ω_p, K_v = J ω_v, K_i = K_v ω_i. The integrator carries static loads
+// (a stance ankle holding the robot) without a standing position error, like a real drive; the
+// finite bandwidth keeps the servo from being infinitely stiff.
 #include <mujoco/mujoco.h>
 
 #include <Eigen/Core>
@@ -13,8 +17,9 @@
 namespace biped {
 
 struct DriveParams {
-  double bandwidth_hz = 20.0;  // closed-loop natural frequency of each position loop
-  double damping_ratio = 1.0;
+  double bandwidth_hz = 20.0;         // position loop: ω_p = 2π·bandwidth (robots.md: 15–25 Hz)
+  double velocity_loop_ratio = 4.0;   // ω_v / ω_p
+  double integral_ratio = 0.25;       // ω_i / ω_v
 };
 
 class JointDrives {
@@ -22,21 +27,25 @@ class JointDrives {
   // `plant` is the simulated robot; gains are computed at its "stand" keyframe.
   JointDrives(const RobotModel& plant, const DriveParams& params);
 
-  // Holds new set-points (plant joint order); the velocity reference is the set-point's rate of
-  // change over the last control period.
+  // Holds new set-points (plant joint order); the velocity reference q̇_d is the set-point's rate
+  // of change over the last control period.
   void set_targets(const Eigen::VectorXd& position, double control_period);
-  // Writes the saturated PD torques into d->ctrl for the current state of d.
-  void apply(const mjModel* m, mjData* d) const;
+  // Writes the saturated torques into d->ctrl for the current state of d and advances the velocity
+  // loops' integrators by dt.
+  void apply(const mjModel* m, mjData* d, double dt);
+  void reset();
 
-  const Eigen::VectorXd& kp() const { return kp_; }
-  const Eigen::VectorXd& kd() const { return kd_; }
+  double position_gain() const { return position_gain_; }
+  const Eigen::VectorXd& velocity_gain() const { return kv_; }
+  const Eigen::VectorXd& integral_gain() const { return ki_; }
   const Eigen::VectorXd& target() const { return target_; }
 
  private:
   const RobotModel& plant_;
-  Eigen::VectorXd kp_, kd_, torque_limit_;
+  double position_gain_ = 0.0;
+  Eigen::VectorXd kv_, ki_, torque_limit_;
   Eigen::VectorXi actuator_;  // actuator id per plant joint
-  Eigen::VectorXd target_, target_rate_;
+  Eigen::VectorXd target_, target_rate_, integral_;
   bool has_target_ = false;
 };
 

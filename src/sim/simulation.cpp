@@ -106,6 +106,7 @@ void Simulation::reset() {
   standing_pelvis_height_ = d->xpos[3 * plant_.pelvis_body() + 2] - terrain_height(params_.world.terrain, 0.0);
   fall_detector_ = FallDetector(plant_, params_.world.terrain, standing_pelvis_height_);
   plant_setpoint_ = plant_.stand_pose();
+  drives_.reset();
   drives_.set_targets(plant_setpoint_, params_.control_period);
   fall_reason_ = nullptr;
   fall_time_ = 0.0;
@@ -131,7 +132,7 @@ void Simulation::advance() {
       }
     }
     sole_contact_.apply(m, d);
-    drives_.apply(m, d);
+    drives_.apply(m, d, m->opt.timestep);
     mj_step2(m, d);
   }
   if (!fall_reason_) {

@@ -2,18 +2,21 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/LU>
+
 #include "sim/simulation.hpp"
 #include "test_support.hpp"
 
 namespace biped {
 namespace {
 
-// Gains follow from bandwidth, damping ratio and the inertia each joint sees in the stand pose.
-TEST(JointDrives, GainsGiveTheConfiguredBandwidth) {
+// Gains follow from the loop bandwidths and the inertia each joint sees in the stand pose.
+TEST(JointDrives, GainsFollowTheLoopBandwidths) {
   const RobotModel model = test::load_model("lola");
   DriveParams params;
   params.bandwidth_hz = 20.0;
-  params.damping_ratio = 0.8;
+  params.velocity_loop_ratio = 5.0;
+  params.integral_ratio = 0.2;
   const JointDrives drives(model, params);
   RobotData data(model);
   const mjModel* m = model.mj();
@@ -21,13 +24,15 @@ TEST(JointDrives, GainsGiveTheConfiguredBandwidth) {
   mj_forward(m, data.mj());
   Eigen::MatrixXd M(m->nv, m->nv);
   mj_fullM(m, M.data(), data.mj()->qM);
-  const double omega = 2 * M_PI * 20.0;
+  const double omega_p = 2 * M_PI * 20.0, omega_v = 5.0 * omega_p;
+  EXPECT_NEAR(drives.position_gain(), omega_p, 1e-12);
+  const Eigen::MatrixXd M_inverse = M.inverse();
   for (int i = 0; i < model.num_joints(); ++i) {
     const int dof = model.joints()[i].dof_adr;
-    const double inertia = M(dof, dof);
+    const double inertia = 1.0 / M_inverse(dof, dof);
     EXPECT_GT(inertia, m->dof_armature[dof]) << "rotor inertia is part of what the drive moves";
-    EXPECT_NEAR(drives.kp()[i] / inertia, omega * omega, 1e-6 * omega * omega);
-    EXPECT_NEAR(drives.kd()[i] / inertia, 2 * 0.8 * omega, 1e-9 * omega);
+    EXPECT_NEAR(drives.velocity_gain()[i] / inertia, omega_v, 1e-9 * omega_v);
+    EXPECT_NEAR(drives.integral_gain()[i] / drives.velocity_gain()[i], 0.2 * omega_v, 1e-9 * omega_v);
   }
 }
 
@@ -40,7 +45,7 @@ TEST(JointDrives, TorqueSaturatesAtTheDriveLimit) {
   Eigen::VectorXd far = model.stand_pose().array() + 1.0;
   drives.set_targets(far, 0.001);
   drives.set_targets(far, 0.001);  // same target twice: no velocity reference
-  drives.apply(m, data.mj());
+  drives.apply(m, data.mj(), 0.001);
   for (int i = 0; i < model.num_joints(); ++i) {
     const JointInfo& j = model.joints()[i];
     int actuator = -1;
@@ -51,8 +56,8 @@ TEST(JointDrives, TorqueSaturatesAtTheDriveLimit) {
   }
 }
 
-// Step response of one joint of the standing robot: the 10-90 % rise time of a critically damped
-// loop is 3.36/ω, so a 15-25 Hz bandwidth means 21-36 ms.
+// Step response of one joint of the standing robot: a position loop of bandwidth ω behaves like a
+// first-order lag, 10-90 % rise time 2.2/ω, so 15-25 Hz means 14-23 ms.
 TEST(JointDrives, StepResponseRiseTimeMatchesTheBandwidth) {
   const RobotModel model = test::load_model("lola");
   SimulationParams p;
@@ -81,8 +86,26 @@ TEST(JointDrives, StepResponseRiseTimeMatchesTheBandwidth) {
   }
   ASSERT_GT(t90, 0.0) << "the joint never reached 90 % of the step";
   const double rise = t90 - t10;
-  EXPECT_GT(rise, 3.36 / (2 * M_PI * 25.0));
-  EXPECT_LT(rise, 3.36 / (2 * M_PI * 15.0));
+  EXPECT_GT(rise, 2.2 / (2 * M_PI * 25.0)) << rise;
+  EXPECT_LT(rise, 2.2 / (2 * M_PI * 15.0)) << rise;
+}
+
+// The velocity loop's integrator carries a static load without a standing position error.
+TEST(JointDrives, NoStaticErrorUnderLoad) {
+  const RobotModel model = test::load_model("lola");
+  SimulationParams p;
+  p.world.robot_mjcf = test::model_path("lola");
+  Simulation sim(p, model);
+  JointCommand cmd(model.num_joints());
+  cmd.position = model.stand_pose();
+  for (int i = 0; i < 2000; ++i) {
+    sim.command(cmd);
+    sim.advance();
+  }
+  for (const char* joint : {"left_knee", "right_hip_pitch", "left_ankle_pitch"}) {
+    const int i = model.joint_index(joint);
+    EXPECT_NEAR(sim.data()->qpos[model.joints()[i].qpos_adr], model.stand_pose()[i], 1e-4) << joint;
+  }
 }
 
 }  // namespace

@@ -1,0 +1,184 @@
+#include "control/walking_controller.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <Eigen/Geometry>
+
+#include "math/rotations.hpp"
+
+namespace biped {
+namespace {
+
+double wrap(double a) { return std::atan2(std::sin(a), std::cos(a)); }
+
+Eigen::Matrix3d yaw_rotation(double yaw) {
+  return Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+}
+
+PatternGeneratorParams pattern_params(const RobotModel& model, const WalkingControllerParams& params) {
+  PatternGeneratorParams p = simplified_model_of(model);
+  p.arm_swing_gain = params.arm_swing_gain;
+  return p;
+}
+
+}  // namespace
+
+WalkingController::WalkingController(const RobotModel& model, const WalkingControllerParams& params)
+    : model_(model),
+      params_(params),
+      space_(model),
+      rmrc_(model, space_, params.rmrc),
+      pattern_(pattern_params(model, params)),
+      x_id_(Eigen::VectorXd::Zero(space_.dim())),
+      xdot_id_(Eigen::VectorXd::Zero(space_.dim())),
+      last_setpoint_(model.stand_pose()) {}
+
+void WalkingController::reset(const SensorData& first) {
+  start_time_ = first.time;
+  status_ = ControllerStatus{};
+  fsm_ = WalkingStateMachine{};
+  num_planned_ = 0;
+
+  // The controller's own frame: the stand keyframe's base with the measured joint angles, shifted
+  // so the soles are at z = 0.
+  Eigen::VectorXd q = model_.stand_qpos();
+  const bool plausible = check_sensors(model_, params_.sensor_limits, first) == nullptr;
+  for (int i = 0; i < model_.num_joints(); ++i) {
+    const JointInfo& j = model_.joints()[i];
+    q[j.qpos_adr] = std::clamp(plausible ? first.joint_position[i] : model_.stand_pose()[i], j.soft_lower, j.soft_upper);
+  }
+  TaskSpaceData data(space_);
+  evaluate(space_, q, Eigen::Matrix3d::Identity(), data);
+  const double ankle_height = pattern_.params().ankle_height;
+  const double ground = 0.5 * (data.foot_position[0].z() + data.foot_position[1].z()) - ankle_height;
+  q[2] -= ground;
+  evaluate(space_, q, Eigen::Matrix3d::Identity(), data);
+  rmrc_.reset(q);
+
+  const mjData* d = data.robot_data().mj();
+  for (Side side : kSides) {
+    const int k = index_of(side);
+    feet_[k].side = side;
+    feet_[k].position = data.foot_position[k].head<2>();
+    feet_[k].yaw = math::heading_of(math::mat_from_mujoco(d->xmat + 9 * space_.foot_body(side)));
+    feet_[k].touchdown = 0.0;
+  }
+  const double heading = wrap(feet_[0].yaw + 0.5 * wrap(feet_[1].yaw - feet_[0].yaw));
+  const TaskLayout& L = space_.layout();
+  for (Side side : kSides) {
+    Eigen::Vector3d offset = Eigen::Vector3d::Zero();
+    offset.head(L.arm_com_rows) = data.x.segment(L.arm_com[index_of(side)], L.arm_com_rows);
+    arm_offset_[index_of(side)] = yaw_rotation(-heading) * offset;
+  }
+  params_.step.com_height = data.com.z();
+  params_.step.step_width = (feet_[0].position - feet_[1].position).norm();
+
+  // Body mass point of the simplified model so that its CoM is the robot's.
+  const PatternGeneratorParams& p = pattern_.params();
+  const double m_total = p.body_mass + 2.0 * p.leg_mass;
+  AxisState bx, by;
+  bx.position = (m_total * data.com.x() - p.leg_mass * (feet_[0].position.x() + feet_[1].position.x())) / p.body_mass;
+  by.position = (m_total * data.com.y() - p.leg_mass * (feet_[0].position.y() + feet_[1].position.y())) / p.body_mass;
+  pattern_.replan(0.0, feet_, planned_, 0, params_.step, bx, by, data.com.head<2>());
+  pattern_.sample(0.0, sample_);
+  for (int i = 0; i < model_.num_joints(); ++i) last_setpoint_[i] = q[model_.joints()[i].qpos_adr];
+  status_.state = name_of(fsm_.state());
+}
+
+void WalkingController::replan(double t, StepDecision decision, const VelocityCommand& v) {
+  PatternSample now;
+  pattern_.sample(t, now);
+  switch (decision) {
+    case StepDecision::StartWalk: {
+      // Step first with the foot on the side the robot moves or turns to.
+      const Side first_swing = (v.vy > 1e-3 || (std::abs(v.vy) <= 1e-3 && v.omega > 1e-3)) ? Side::Left : Side::Right;
+      const Footstep& stance = feet_[index_of(first_swing == Side::Left ? Side::Right : Side::Left)];
+      plan_steps(stance, v, params_.step, t + params_.step.step_time + params_.start_shift, 3, planned_);
+      num_planned_ = 3;
+      break;
+    }
+    case StepDecision::Continue:
+      plan_steps(feet_[index_of(planned_[0].side)], v, params_.step, t + params_.step.step_time, 3, planned_);
+      num_planned_ = 3;
+      break;
+    case StepDecision::StopStep:
+      plan_steps(feet_[index_of(planned_[0].side)], VelocityCommand{}, params_.step, t + params_.step.step_time, 1,
+                 planned_);
+      num_planned_ = 1;
+      break;
+    case StepDecision::Stand:
+      num_planned_ = 0;
+      break;
+    case StepDecision::None:
+      return;
+  }
+  pattern_.replan(t, feet_, planned_, num_planned_, params_.step, now.body_x, now.body_y, now.zmp);
+}
+
+// Table I coordinates of the pattern sample (see model/task_space.hpp for the rows).
+void WalkingController::task_reference(const PatternSample& s) {
+  const TaskLayout& L = space_.layout();
+  const Eigen::Matrix3d heading = yaw_rotation(s.heading);
+  const Eigen::Vector3d forward = heading.col(0);
+  for (Side side : kSides) {
+    const int k = index_of(side);
+    const FootReference& foot = s.feet[k];
+    x_id_.segment<3>(L.foot_position[k]) = foot.position - s.com;
+    xdot_id_.segment<3>(L.foot_position[k]) = foot.velocity - s.com_velocity;
+    x_id_.segment<3>(L.foot_orientation[k]) << 0.0, 0.0, wrap(foot.yaw - s.heading);
+    xdot_id_.segment<3>(L.foot_orientation[k]) << 0.0, 0.0, foot.yaw_rate - s.heading_rate;
+    // Arms swing against the legs: the right arm forward with the left leg.
+    const double swing = side == Side::Right ? s.arm_swing : -s.arm_swing;
+    const double swing_rate = side == Side::Right ? s.arm_swing_rate : -s.arm_swing_rate;
+    const Eigen::Vector3d arm = heading * arm_offset_[k] + swing * forward;
+    const Eigen::Vector3d arm_rate =
+        s.heading_rate * Eigen::Vector3d::UnitZ().cross(heading * arm_offset_[k] + swing * forward) + swing_rate * forward;
+    x_id_.segment(L.arm_com[k], L.arm_com_rows) = arm.head(L.arm_com_rows);
+    xdot_id_.segment(L.arm_com[k], L.arm_com_rows) = arm_rate.head(L.arm_com_rows);
+  }
+  x_id_.segment<3>(L.upper_body_orientation).setZero();
+  xdot_id_.segment<3>(L.upper_body_orientation) << 0.0, 0.0, s.heading_rate;
+  x_id_.segment<3>(L.com) = s.com;
+  xdot_id_.segment<3>(L.com) = s.com_velocity;
+}
+
+void WalkingController::step(const SensorData& sensors, const WalkCommand& command, JointCommand& out) {
+  if (fsm_.state() != WalkingState::SafeStop) {
+    if (const char* fault = check_sensors(model_, params_.sensor_limits, sensors)) {
+      fsm_.enter_safe_stop();
+      status_.fault = true;
+      status_.fault_reason = fault;
+    }
+  }
+  if (fsm_.state() == WalkingState::SafeStop) {
+    status_.state = name_of(fsm_.state());
+    out.position = last_setpoint_;
+    return;
+  }
+
+  const double t = sensors.time - start_time_;
+  bool saturated = false;
+  const VelocityCommand v = saturate({command.vx, command.vy, command.omega}, params_.limits, saturated);
+  status_.command_saturated = saturated;
+  const bool wants_to_walk = !command.stop && (std::abs(v.vx) + std::abs(v.vy) + std::abs(v.omega) > 1e-3);
+  const bool at_touchdown = num_planned_ > 0 && t >= pattern_.next_touchdown() - 1e-9;
+  if (at_touchdown) {
+    feet_[index_of(planned_[0].side)] = planned_[0];
+    ++status_.steps_completed;
+  }
+  replan(t, fsm_.update(wants_to_walk, at_touchdown), v);
+
+  pattern_.sample(t, sample_);
+  task_reference(sample_);
+  rmrc_.step(x_id_, xdot_id_, yaw_rotation(sample_.heading));
+  if (!rmrc_.fault() && rmrc_.joint_positions().allFinite()) last_setpoint_ = rmrc_.joint_positions();
+  out.position = last_setpoint_;
+
+  status_.com_desired = sample_.com;
+  status_.zmp_desired = sample_.zmp;
+  status_.desired_wrench = sample_.contact_wrench;
+  status_.state = name_of(fsm_.state());
+}
+
+}  // namespace biped

@@ -1,0 +1,63 @@
+#pragma once
+// One walking-controller cycle (Fig. 3): walking state machine, step sequence planner, walking
+// pattern generator and resolved motion rate control with null-space optimization (eq. 21). The
+// stabilizer (contact force modification, eq. 10, and hybrid position/force control, eqs. 11–20)
+// plugs in between the pattern and eq. (21); without it this is the open-loop baseline.
+// Sees only SensorData; allocation-free and NaN-free in step().
+#include <array>
+#include <memory>
+
+#include "control/interface.hpp"
+#include "control/resolved_motion_rate_control.hpp"
+#include "control/sensor_check.hpp"
+#include "control/walking_state_machine.hpp"
+#include "model/task_space.hpp"
+#include "planning/step_sequence_planner.hpp"
+#include "planning/walking_pattern_generator.hpp"
+
+namespace biped {
+
+struct WalkingControllerParams {
+  StepParameters step;            // step time, double support, clearance, width (com_height: measured)
+  CommandLimits limits;           // feasible commands; beyond them the command is saturated
+  double start_shift = 0.6;       // [s] extra double support before the first step from standing
+  double arm_swing_gain = 0.15;   // arm CoM forward offset per metre of foot separation
+  ResolvedMotionRateControlParams rmrc;
+  SensorLimits sensor_limits;
+};
+
+class WalkingController final : public Controller {
+ public:
+  WalkingController(const RobotModel& model, const WalkingControllerParams& params);
+
+  void reset(const SensorData& first) override;
+  void step(const SensorData& sensors, const WalkCommand& command, JointCommand& out) override;
+  const ControllerStatus& status() const override { return status_; }
+
+  WalkingState state() const { return fsm_.state(); }
+  const PatternSample& pattern() const { return sample_; }
+  const ResolvedMotionRateControl& rmrc() const { return rmrc_; }
+
+ private:
+  void replan(double t, StepDecision decision, const VelocityCommand& v);
+  void task_reference(const PatternSample& s);
+
+  const RobotModel& model_;
+  WalkingControllerParams params_;
+  TaskSpace space_;
+  ResolvedMotionRateControl rmrc_;
+  WalkingPatternGenerator pattern_;
+  WalkingStateMachine fsm_;
+  ControllerStatus status_;
+
+  double start_time_ = 0.0;
+  std::array<Footstep, 2> feet_;              // current footholds (planner frame)
+  std::array<Footstep, 3> planned_;           // steps of the current plan
+  int num_planned_ = 0;
+  PatternSample sample_;
+  std::array<Eigen::Vector3d, 2> arm_offset_;  // nominal arm CoM − CoM in the heading frame
+  Eigen::VectorXd x_id_, xdot_id_;
+  Eigen::VectorXd last_setpoint_;
+};
+
+}  // namespace biped

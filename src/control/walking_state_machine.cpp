@@ -1,0 +1,41 @@
+#include "control/walking_state_machine.hpp"
+
+namespace biped {
+
+const char* name_of(WalkingState state) {
+  switch (state) {
+    case WalkingState::Standing: return "standing";
+    case WalkingState::Starting: return "starting";
+    case WalkingState::Walking: return "walking";
+    case WalkingState::Stopping: return "stopping";
+    case WalkingState::SafeStop: return "safe_stop";
+  }
+  return "unknown";
+}
+
+StepDecision WalkingStateMachine::update(bool wants_to_walk, bool at_touchdown) {
+  switch (state_) {
+    case WalkingState::Standing:
+      if (!wants_to_walk) return StepDecision::None;
+      state_ = WalkingState::Starting;
+      return StepDecision::StartWalk;
+    case WalkingState::Starting:
+    case WalkingState::Walking:
+      if (!at_touchdown) return StepDecision::None;
+      if (wants_to_walk) {
+        state_ = WalkingState::Walking;
+        return StepDecision::Continue;
+      }
+      state_ = WalkingState::Stopping;
+      return StepDecision::StopStep;
+    case WalkingState::Stopping:
+      if (!at_touchdown) return StepDecision::None;
+      state_ = WalkingState::Standing;
+      return StepDecision::Stand;
+    case WalkingState::SafeStop:
+      return StepDecision::None;
+  }
+  return StepDecision::None;
+}
+
+}  // namespace biped

@@ -1,0 +1,198 @@
+#include "model/task_space.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace biped {
+namespace so3 {
+
+Eigen::Vector3d log(const Eigen::Quaterniond& q_in) {
+  // q and −q are the same rotation; w ≥ 0 gives the angle in [0, π].
+  const Eigen::Quaterniond q = q_in.w() < 0.0 ? Eigen::Quaterniond(-q_in.coeffs()) : q_in;
+  const double s = q.vec().norm();  // sin(θ/2)
+  // θ/s = 2 atan2(s, w)/s is well-conditioned down to s → 0, where it tends to 2/w.
+  const double scale = s < 1e-12 ? 2.0 / q.w() : 2.0 * std::atan2(s, q.w()) / s;
+  return scale * q.vec();
+}
+
+Eigen::Matrix3d exp(const Eigen::Vector3d& phi) {
+  const double angle = phi.norm();
+  if (angle < 1e-300) return Eigen::Matrix3d::Identity();
+  return Eigen::AngleAxisd(angle, phi / angle).toRotationMatrix();
+}
+
+Eigen::Matrix3d inverse_left_jacobian(const Eigen::Vector3d& phi) {
+  // J_l⁻¹ = I − ½[φ]× + c(θ)[φ]×², c = 1/θ² − (1 + cos θ)/(2θ sin θ).
+  const double theta2 = phi.squaredNorm();
+  double c;
+  if (theta2 < 1e-4) {
+    // Taylor series of c: the closed form loses digits to cancellation for small θ.
+    c = 1.0 / 12.0 + theta2 / 720.0 + theta2 * theta2 / 30240.0;
+  } else {
+    const double theta = std::sqrt(theta2);
+    c = 1.0 / theta2 - (1.0 + std::cos(theta)) / (2.0 * theta * std::sin(theta));
+  }
+  Eigen::Matrix3d hat;
+  hat << 0.0, -phi.z(), phi.y(), phi.z(), 0.0, -phi.x(), -phi.y(), phi.x(), 0.0;
+  return Eigen::Matrix3d::Identity() - 0.5 * hat + c * hat * hat;
+}
+
+}  // namespace so3
+
+namespace {
+
+// All bodies in the subtree of `root` (root included).
+bool in_subtree(const mjModel* m, int body, int root) {
+  for (int b = body; b > 0; b = m->body_parentid[b]) {
+    if (b == root) return true;
+  }
+  return false;
+}
+
+int count_dofs_in_subtree(const mjModel* m, int root) {
+  int dofs = 0;
+  for (int j = 0; j < m->njnt; ++j) {
+    if (in_subtree(m, m->jnt_bodyid[j], root)) dofs += m->jnt_type[j] == mjJNT_HINGE ? 1 : 0;
+  }
+  return dofs;
+}
+
+void add_rows(std::vector<std::string>& names, const std::string& prefix, int count,
+              const char* const* suffixes) {
+  for (int i = 0; i < count; ++i) names.push_back(prefix + suffixes[i]);
+}
+
+Eigen::Quaterniond body_quat(const mjData* d, int body) {
+  const double* q = d->xquat + 4 * body;  // w, x, y, z
+  return Eigen::Quaterniond(q[0], q[1], q[2], q[3]);
+}
+
+}  // namespace
+
+TaskSpace::TaskSpace(const RobotModel& model) : model_(&model) {
+  const mjModel* m = model.mj();
+  constexpr std::array<Side, 2> kRowOrder = {Side::Right, Side::Left};  // Table I lists right first
+
+  int arm_dofs = 3;
+  for (Side side : kSides) {
+    foot_body_[index_of(side)] = model.foot(side).body;
+    const std::string joint = std::string(name_of(side)) + "_shoulder_pitch";
+    const int j = mj_name2id(m, mjOBJ_JOINT, joint.c_str());
+    if (j < 0) throw ModelError(model.path() + ": the model has no joint named '" + joint + "'");
+    arm_body_[index_of(side)] = m->jnt_bodyid[j];
+    arm_dofs = std::min(arm_dofs, count_dofs_in_subtree(m, arm_body_[index_of(side)]));
+  }
+  if (arm_dofs < 2) throw ModelError(model.path() + ": each arm needs at least two joints");
+  // An arm with fewer than three joints cannot place its CoM in 3D: only x and y are tasks.
+  layout_.arm_com_rows = arm_dofs >= 3 ? 3 : 2;
+  layout_.has_toes = model.joint_index("left_toe") >= 0 && model.joint_index("right_toe") >= 0;
+
+  static const char* const kXyz[] = {"_x", "_y", "_z"};
+  static const char* const kPhi[] = {"_phi_x", "_phi_y", "_phi_z"};
+  int row = 0;
+  for (Side side : kRowOrder) {
+    layout_.foot_position[index_of(side)] = row;
+    row += 3;
+    add_rows(row_names_, std::string(name_of(side)) + "_foot", 3, kXyz);
+  }
+  for (Side side : kRowOrder) {
+    layout_.foot_orientation[index_of(side)] = row;
+    row += 3;
+    add_rows(row_names_, std::string(name_of(side)) + "_foot", 3, kPhi);
+  }
+  for (Side side : kRowOrder) {
+    layout_.arm_com[index_of(side)] = row;
+    row += layout_.arm_com_rows;
+    add_rows(row_names_, std::string(name_of(side)) + "_arm_com", layout_.arm_com_rows, kXyz);
+  }
+  layout_.upper_body_orientation = row;
+  row += 3;
+  add_rows(row_names_, "upper_body", 3, kPhi);
+  layout_.com = row;
+  row += 3;
+  add_rows(row_names_, "com", 3, kXyz);
+  layout_.dim = row;
+
+  if (layout_.dim > m->nv) {
+    throw ModelError(model.path() + ": " + std::to_string(layout_.dim) + " task coordinates but only " +
+                     std::to_string(m->nv) + " generalized velocities");
+  }
+}
+
+TaskSpaceData::TaskSpaceData(const TaskSpace& space)
+    : x(Eigen::VectorXd::Zero(space.dim())),
+      J(Eigen::MatrixXd::Zero(space.dim(), space.nv())),
+      robot_data_(space.model()),
+      jac_com_(3, space.nv()),
+      jac_pos_(3, space.nv()),
+      jac_rot_(3, space.nv()),
+      jac_upper_body_rot_(3, space.nv()),
+      jac_tmp_(3, space.nv()) {
+  foot_position[0].setZero();
+  foot_position[1].setZero();
+}
+
+void evaluate(const TaskSpace& space, const Eigen::VectorXd& qpos, const Eigen::Matrix3d& R_ref,
+              TaskSpaceData& data) {
+  const mjModel* m = space.model().mj();
+  mjData* d = data.robot_data_.mj();
+  const TaskLayout& layout = space.layout();
+  Eigen::VectorXd& x = data.x;
+  Eigen::MatrixXd& J = data.J;
+
+  Eigen::Map<Eigen::VectorXd>(d->qpos, m->nq) = qpos;
+  mj_kinematics(m, d);
+  mj_comPos(m, d);  // subtree CoMs and the motion subspaces that mj_jac* need
+
+  const int root = space.root_body();
+  data.com = Eigen::Map<const Eigen::Vector3d>(d->subtree_com + 3 * root);
+  mj_jacSubtreeCom(m, d, data.jac_com_.data(), root);
+
+  const int ub = space.upper_body();
+  const Eigen::Quaterniond q_ub = body_quat(d, ub);
+  data.upper_body_rotation = q_ub.toRotationMatrix();
+  mj_jacBody(m, d, nullptr, data.jac_upper_body_rot_.data(), ub);
+
+  for (Side side : kSides) {
+    const int s = index_of(side);
+    const int body = space.foot_body(side);
+    data.foot_position[s] = Eigen::Map<const Eigen::Vector3d>(d->xpos + 3 * body);
+    mj_jacBody(m, d, data.jac_pos_.data(), data.jac_rot_.data(), body);
+
+    const int p = layout.foot_position[s];
+    x.segment<3>(p) = data.foot_position[s] - data.com;
+    J.middleRows<3>(p) = data.jac_pos_ - data.jac_com_;
+
+    // φ = log(R_UBᵀ R_foot); its rate is J_l⁻¹(φ) R_UBᵀ (ω_foot − ω_UB).
+    const int o = layout.foot_orientation[s];
+    const Eigen::Vector3d phi = so3::log(q_ub.conjugate() * body_quat(d, body));
+    x.segment<3>(o) = phi;
+    const Eigen::Matrix3d map = so3::inverse_left_jacobian(phi) * data.upper_body_rotation.transpose();
+    data.jac_tmp_ = data.jac_rot_ - data.jac_upper_body_rot_;
+    J.middleRows<3>(o).noalias() = map * data.jac_tmp_;
+
+    const int a = layout.arm_com[s];
+    const int n = layout.arm_com_rows;
+    const int arm = space.arm_body(side);
+    mj_jacSubtreeCom(m, d, data.jac_pos_.data(), arm);
+    x.segment(a, n) = (Eigen::Map<const Eigen::Vector3d>(d->subtree_com + 3 * arm) - data.com).head(n);
+    J.middleRows(a, n) = (data.jac_pos_ - data.jac_com_).topRows(n);
+  }
+
+  // φ_UB = log(R_refᵀ R_UB); its rate is J_l⁻¹(φ_UB) R_refᵀ ω_UB.
+  const int u = layout.upper_body_orientation;
+  const Eigen::Vector3d phi_ub = so3::log(Eigen::Quaterniond(R_ref).conjugate() * q_ub);
+  x.segment<3>(u) = phi_ub;
+  const Eigen::Matrix3d map = so3::inverse_left_jacobian(phi_ub) * R_ref.transpose();
+  J.middleRows<3>(u).noalias() = map * data.jac_upper_body_rot_;
+
+  const int c = layout.com;
+  x.segment<3>(c) = data.com;
+  J.middleRows<3>(c) = data.jac_com_;
+}
+
+void task_error(const Eigen::VectorXd& x_d, const Eigen::VectorXd& x, Eigen::VectorXd& error) {
+  error = x_d - x;
+}
+
+}  // namespace biped
