@@ -48,12 +48,21 @@ void read_simulation(const YamlReader& r, const YAML::Node& sim, SimulationParam
 void read_controller(const YamlReader& r, const YAML::Node& c, ControllerConfig& p) {
   r.expect_keys(c, "controller", {"type", "model", "stabilizer", "ramp_time", "software_limit_margin_deg", "step_time",
                                   "double_support_ratio", "clearance", "start_shift", "arm_swing_gain", "task_gain",
-                                  "null_space_gain", "joint_velocity_limit", "limits"});
+                                  "null_space_gain", "joint_velocity_limit", "limits", "stance", "lift_height", "shift_time",
+                                  "lift_time", "hold_time"});
   if (!c) return;
   p.type = r.text_or(c, "controller", "type", p.type);
-  if (p.type != "walking" && p.type != "standing") {
-    r.fail(c["type"], "controller.type", "unknown controller '" + p.type + "' (known: walking, standing)");
+  if (p.type != "walking" && p.type != "standing" && p.type != "weight_shift") {
+    r.fail(c["type"], "controller.type", "unknown controller '" + p.type + "' (known: walking, standing, weight_shift)");
   }
+  WeightShiftParams& ws = p.weight_shift;
+  const std::string stance = r.text_or(c, "controller", "stance", ws.stance == Side::Left ? "left" : "right");
+  if (stance != "left" && stance != "right") r.fail(c["stance"], "controller.stance", "must be left or right");
+  ws.stance = stance == "left" ? Side::Left : Side::Right;
+  ws.lift_height = r.non_negative_or(c, "controller", "lift_height", ws.lift_height);
+  ws.shift_time = r.positive_or(c, "controller", "shift_time", ws.shift_time);
+  ws.lift_time = r.positive_or(c, "controller", "lift_time", ws.lift_time);
+  ws.hold_time = r.non_negative_or(c, "controller", "hold_time", ws.hold_time);
   WalkingControllerParams& w = p.walking;
   w.step.step_time = r.positive_or(c, "controller", "step_time", w.step.step_time);
   w.step.double_support_ratio = r.positive_or(c, "controller", "double_support_ratio", w.step.double_support_ratio);
@@ -190,6 +199,7 @@ RunConfig make_run_config(const Scenario& s) {
   config.sim.seed = s.seed;
   config.sim.software_limit_margin_rad = config.controller.software_limit_margin_rad;
   config.controller.walking.rmrc.dt = config.sim.control_period;
+  config.controller.weight_shift.rmrc = config.controller.walking.rmrc;
   return config;
 }
 

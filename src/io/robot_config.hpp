@@ -5,18 +5,20 @@
 
 #include "control/standing_controller.hpp"
 #include "control/walking_controller.hpp"
+#include "control/weight_shift_controller.hpp"
 #include "io/scenario.hpp"
 #include "sim/simulation.hpp"
 
 namespace biped {
 
 struct ControllerConfig {
-  std::string type = "walking";  // walking | standing
+  std::string type = "walking";  // walking | standing | weight_shift
   std::string model_path;  // the controller's own MJCF (default: the simulated robot's)
   bool stabilizer = true;  // used by the walking controller; the standing controller has none
   double software_limit_margin_rad = 5.0 * M_PI / 180.0;
   StandingControllerParams standing;
   WalkingControllerParams walking;
+  WeightShiftParams weight_shift;
 };
 
 struct RunConfig {

@@ -33,6 +33,7 @@ RobotModel load_controller_model(const RunConfig& config) {
 
 std::unique_ptr<Controller> make_controller(const RunConfig& config, const RobotModel& model) {
   if (config.controller.type == "standing") return std::make_unique<StandingController>(model, config.controller.standing);
+  if (config.controller.type == "weight_shift") return std::make_unique<WeightShiftController>(model, config.controller.weight_shift);
   return std::make_unique<WalkingController>(model, config.controller.walking);
 }
 
