@@ -134,6 +134,7 @@ void ResolvedMotionRateControl::reset(const Eigen::VectorXd& qpos) {
   damping_squared_ = 0.0;
   velocity_scale_ = 1.0;
   fault_ = false;
+  evaluate(space_, qpos_d_, Eigen::Matrix3d::Identity(), task_);  // task() is valid before the first step
 }
 
 const Eigen::VectorXd& ResolvedMotionRateControl::step(const Eigen::VectorXd& x_id, const Eigen::VectorXd& xdot_id,

@@ -76,7 +76,8 @@ class ResolvedMotionRateControl {
   ResolvedMotionRateControl(const RobotModel& model, const TaskSpace& space,
                             const ResolvedMotionRateControlParams& params);
 
-  // Sets q_d (full qpos, size nq) and forgets the warm start of the σ_min estimate.
+  // Sets q_d (full qpos, size nq), evaluates x and J there (R_ref = identity) and forgets the warm
+  // start of the σ_min estimate.
   void reset(const Eigen::VectorXd& qpos);
 
   // One cycle: x, J at q_d, eq. (21), integration. Returns the new q_d. Allocation-free; never
@@ -94,6 +95,7 @@ class ResolvedMotionRateControl {
 
   // Of the last cycle (x and J at q_d before the integration step):
   const Eigen::VectorXd& x() const { return task_.x; }
+  const TaskSpaceData& task() const { return task_; }
   const Eigen::MatrixXd& J() const { return task_.J; }
   const Eigen::VectorXd& xdot_d() const { return xdot_d_; }
   const Eigen::VectorXd& qdot_d() const { return qdot_d_; }        // after the velocity limit

@@ -64,13 +64,6 @@ void WalkingController::reset(const SensorData& first) {
     feet_[k].yaw = math::heading_of(math::mat_from_mujoco(d->xmat + 9 * space_.foot_body(side)));
     feet_[k].touchdown = 0.0;
   }
-  const double heading = wrap(feet_[0].yaw + 0.5 * wrap(feet_[1].yaw - feet_[0].yaw));
-  const TaskLayout& L = space_.layout();
-  for (Side side : kSides) {
-    Eigen::Vector3d offset = Eigen::Vector3d::Zero();
-    offset.head(L.arm_com_rows) = data.x.segment(L.arm_com[index_of(side)], L.arm_com_rows);
-    arm_offset_[index_of(side)] = yaw_rotation(-heading) * offset;
-  }
   params_.step.com_height = data.com.z();
   params_.step.step_width = (feet_[0].position - feet_[1].position).norm();
 
@@ -82,6 +75,20 @@ void WalkingController::reset(const SensorData& first) {
   by.position = (m_total * data.com.y() - p.leg_mass * (feet_[0].position.y() + feet_[1].position.y())) / p.body_mass;
   pattern_.replan(0.0, feet_, planned_, 0, params_.step, bx, by, data.com.head<2>());
   pattern_.sample(0.0, sample_);
+  // The arms hang from the upper body and swing: their CoM offsets are kept relative to the upper
+  // body's origin, in the heading frame (x_id then gives arm CoM − robot CoM as in Table I).
+  const double heading = wrap(feet_[0].yaw + 0.5 * wrap(feet_[1].yaw - feet_[0].yaw));
+  const Eigen::Vector3d& body = data.upper_body_position;
+  const TaskLayout& L = space_.layout();
+  for (Side side : kSides) {
+    Eigen::Vector3d arm = data.com;
+    arm.head(L.arm_com_rows) += data.x.segment(L.arm_com[index_of(side)], L.arm_com_rows);
+    arm_offset_[index_of(side)] = yaw_rotation(-heading) * (arm - body);
+    // The arm swings about its shoulder's pitch axis: the CoM rises on an arc of this radius.
+    const int shoulder = mj_name2id(model_.mj(), mjOBJ_JOINT, (std::string(name_of(side)) + "_shoulder_pitch").c_str());
+    const Eigen::Vector3d lever = yaw_rotation(-heading) * (arm - Eigen::Vector3d(d->xanchor + 3 * shoulder));
+    arm_radius_[index_of(side)] = std::max(0.05, std::hypot(lever.x(), lever.z()));
+  }
   for (int i = 0; i < model_.num_joints(); ++i) last_setpoint_[i] = q[model_.joints()[i].qpos_adr];
   status_.state = name_of(fsm_.state());
 }
@@ -131,9 +138,14 @@ void WalkingController::task_reference(const PatternSample& s) {
     // Arms swing against the legs: the right arm forward with the left leg.
     const double swing = side == Side::Right ? s.arm_swing : -s.arm_swing;
     const double swing_rate = side == Side::Right ? s.arm_swing_rate : -s.arm_swing_rate;
-    const Eigen::Vector3d arm = heading * arm_offset_[k] + swing * forward;
-    const Eigen::Vector3d arm_rate =
-        s.heading_rate * Eigen::Vector3d::UnitZ().cross(heading * arm_offset_[k] + swing * forward) + swing_rate * forward;
+    // The upper body where eq. (21)'s own kinematic state has it (last cycle), moving like the CoM.
+    const Eigen::Vector3d& body = rmrc_.task().upper_body_position;
+    const double r = arm_radius_[k];
+    const Eigen::Vector3d offset =
+        heading * arm_offset_[k] + swing * forward + 0.5 * swing * swing / r * Eigen::Vector3d::UnitZ();
+    const Eigen::Vector3d arm = body + offset - rmrc_.task().com;
+    const Eigen::Vector3d arm_rate = s.heading_rate * Eigen::Vector3d::UnitZ().cross(offset) +
+                                     swing_rate * (forward + swing / r * Eigen::Vector3d::UnitZ());
     x_id_.segment(L.arm_com[k], L.arm_com_rows) = arm.head(L.arm_com_rows);
     xdot_id_.segment(L.arm_com[k], L.arm_com_rows) = arm_rate.head(L.arm_com_rows);
   }

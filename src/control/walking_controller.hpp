@@ -21,7 +21,7 @@ struct WalkingControllerParams {
   StepParameters step;            // step time, double support, clearance, width (com_height: measured)
   CommandLimits limits;           // feasible commands; beyond them the command is saturated
   double start_shift = 0.6;       // [s] extra double support before the first step from standing
-  double arm_swing_gain = 0.15;   // arm CoM forward offset per metre of foot separation
+  double arm_swing_gain = 0.0;    // arm CoM forward offset per metre of foot separation (see docs/walking.md)
   ResolvedMotionRateControlParams rmrc;
   SensorLimits sensor_limits;
 };
@@ -55,7 +55,8 @@ class WalkingController final : public Controller {
   std::array<Footstep, 3> planned_;           // steps of the current plan
   int num_planned_ = 0;
   PatternSample sample_;
-  std::array<Eigen::Vector3d, 2> arm_offset_;  // nominal arm CoM − CoM in the heading frame
+  std::array<Eigen::Vector3d, 2> arm_offset_;  // arm CoM − upper body origin, heading frame
+  std::array<double, 2> arm_radius_{};          // shoulder to arm CoM
   Eigen::VectorXd x_id_, xdot_id_;
   Eigen::VectorXd last_setpoint_;
 };

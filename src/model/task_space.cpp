@@ -151,6 +151,7 @@ void evaluate(const TaskSpace& space, const Eigen::VectorXd& qpos, const Eigen::
   const int ub = space.upper_body();
   const Eigen::Quaterniond q_ub = body_quat(d, ub);
   data.upper_body_rotation = q_ub.toRotationMatrix();
+  data.upper_body_position = Eigen::Vector3d(d->xpos + 3 * space.upper_body());
   mj_jacBody(m, d, nullptr, data.jac_upper_body_rot_.data(), ub);
 
   for (Side side : kSides) {

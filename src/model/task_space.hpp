@@ -77,6 +77,7 @@ class TaskSpaceData {
   Eigen::Vector3d com = Eigen::Vector3d::Zero();          // robot CoM, world frame
   std::array<Eigen::Vector3d, 2> foot_position{};          // world frame, by Side
   Eigen::Matrix3d upper_body_rotation = Eigen::Matrix3d::Identity();
+  Eigen::Vector3d upper_body_position = Eigen::Vector3d::Zero();  // body origin, world frame
 
   RobotData& robot_data() { return robot_data_; }
 

@@ -12,42 +12,7 @@
 
 #include "control/resolved_motion_rate_control_svd.hpp"
 
-// ---- Heap allocation counter -------------------------------------------------------------------
-// Counts every heap allocation while enabled: operator new, and malloc/calloc/realloc too, because
-// Eigen allocates through std::malloc, not operator new.
-extern "C" void* __libc_malloc(std::size_t);
-extern "C" void* __libc_calloc(std::size_t, std::size_t);
-extern "C" void* __libc_realloc(void*, std::size_t);
-extern "C" void __libc_free(void*);
-namespace {
-bool g_counting = false;
-long g_allocations = 0;
-void count() {
-  if (g_counting) ++g_allocations;
-}
-}  // namespace
-extern "C" void* malloc(std::size_t size) {
-  count();
-  return __libc_malloc(size);
-}
-extern "C" void* calloc(std::size_t n, std::size_t size) {
-  count();
-  return __libc_calloc(n, size);
-}
-extern "C" void* realloc(void* p, std::size_t size) {
-  count();
-  return __libc_realloc(p, size);
-}
-void* operator new(std::size_t size) {
-  count();
-  if (void* p = __libc_malloc(size ? size : 1)) return p;
-  throw std::bad_alloc();
-}
-void* operator new[](std::size_t size) { return operator new(size); }
-void operator delete(void* p) noexcept { __libc_free(p); }
-void operator delete[](void* p) noexcept { __libc_free(p); }
-void operator delete(void* p, std::size_t) noexcept { __libc_free(p); }
-void operator delete[](void* p, std::size_t) noexcept { __libc_free(p); }
+#include "allocation_counter.hpp"
 
 namespace biped {
 namespace {

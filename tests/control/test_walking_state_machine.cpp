@@ -1,0 +1,35 @@
+#include "control/walking_state_machine.hpp"
+
+#include <gtest/gtest.h>
+
+namespace biped {
+namespace {
+
+TEST(WalkingStateMachine, StartWalkStopStand) {
+  WalkingStateMachine fsm;
+  EXPECT_EQ(fsm.update(false, false), StepDecision::None);
+  EXPECT_EQ(fsm.state(), WalkingState::Standing);
+  EXPECT_EQ(fsm.update(true, false), StepDecision::StartWalk);
+  EXPECT_EQ(fsm.state(), WalkingState::Starting);
+  EXPECT_EQ(fsm.update(true, false), StepDecision::None);
+  EXPECT_EQ(fsm.update(true, true), StepDecision::Continue);
+  EXPECT_EQ(fsm.state(), WalkingState::Walking);
+  EXPECT_EQ(fsm.update(false, false), StepDecision::None) << "stops only at a touchdown";
+  EXPECT_EQ(fsm.update(false, true), StepDecision::StopStep);
+  EXPECT_EQ(fsm.state(), WalkingState::Stopping);
+  EXPECT_EQ(fsm.update(true, true), StepDecision::Stand) << "a stop completes before walking again";
+  EXPECT_EQ(fsm.state(), WalkingState::Standing);
+  EXPECT_STREQ(name_of(fsm.state()), "standing");
+}
+
+TEST(WalkingStateMachine, SafeStopIsFinal) {
+  WalkingStateMachine fsm;
+  fsm.update(true, false);
+  fsm.enter_safe_stop();
+  EXPECT_EQ(fsm.update(true, true), StepDecision::None);
+  EXPECT_EQ(fsm.state(), WalkingState::SafeStop);
+  EXPECT_STREQ(name_of(fsm.state()), "safe_stop");
+}
+
+}  // namespace
+}  // namespace biped
