@@ -30,8 +30,11 @@ WalkingController::WalkingController(const RobotModel& model, const WalkingContr
       space_(model),
       rmrc_(model, space_, params.rmrc),
       pattern_(pattern_params(model, params)),
+      stabilizer_(model, params.stabilization),
       x_id_(Eigen::VectorXd::Zero(space_.dim())),
       xdot_id_(Eigen::VectorXd::Zero(space_.dim())),
+      delta_x_(Eigen::VectorXd::Zero(space_.dim())),
+      delta_xdot_(Eigen::VectorXd::Zero(space_.dim())),
       last_setpoint_(model.stand_pose()) {}
 
 void WalkingController::reset(const SensorData& first) {
@@ -39,6 +42,9 @@ void WalkingController::reset(const SensorData& first) {
   status_ = ControllerStatus{};
   fsm_ = WalkingStateMachine{};
   num_planned_ = 0;
+  stabilizer_.reset();
+  delta_x_.setZero();
+  delta_xdot_.setZero();
 
   // The controller's own frame: the stand keyframe's base with the measured joint angles, shifted
   // so the soles are at z = 0.
@@ -155,6 +161,21 @@ void WalkingController::task_reference(const PatternSample& s) {
   xdot_id_.segment<3>(L.com) = s.com_velocity;
 }
 
+// S̄ᵀΔx_λ of eq. (21): the feet's height and tilt modifications enter the foot rows; the tilt is
+// turned from the foot frame into the upper body's heading frame.
+void WalkingController::stabilizer_modification(const PatternSample& s) {
+  const TaskLayout& L = space_.layout();
+  for (Side side : kSides) {
+    const int k = index_of(side);
+    const FootModification& m = stabilizer_.modification()[k];
+    const Eigen::Matrix3d to_heading = yaw_rotation(wrap(s.feet[k].yaw - s.heading));
+    delta_x_[L.foot_position[k] + 2] = m.offset[0];
+    delta_xdot_[L.foot_position[k] + 2] = m.rate[0];
+    delta_x_.segment<3>(L.foot_orientation[k]) = to_heading * Eigen::Vector3d(m.offset[1], m.offset[2], 0.0);
+    delta_xdot_.segment<3>(L.foot_orientation[k]) = to_heading * Eigen::Vector3d(m.rate[1], m.rate[2], 0.0);
+  }
+}
+
 void WalkingController::step(const SensorData& sensors, const WalkCommand& command, JointCommand& out) {
   if (fsm_.state() != WalkingState::SafeStop) {
     if (const char* fault = check_sensors(model_, params_.sensor_limits, sensors)) {
@@ -183,13 +204,18 @@ void WalkingController::step(const SensorData& sensors, const WalkCommand& comma
 
   pattern_.sample(t, sample_);
   task_reference(sample_);
-  rmrc_.step(x_id_, xdot_id_, yaw_rotation(sample_.heading));
+  if (params_.stabilizer) {
+    stabilizer_.step(params_.rmrc.dt, sample_.contact_wrench, {sample_.feet[0].in_contact, sample_.feet[1].in_contact},
+                     sample_.load_share, sensors.foot_wrench, sensors.imu_orientation, sensors.imu_angular_rate);
+    stabilizer_modification(sample_);
+  }
+  rmrc_.step(x_id_, xdot_id_, yaw_rotation(sample_.heading), delta_x_, delta_xdot_);
   if (!rmrc_.fault() && rmrc_.joint_positions().allFinite()) last_setpoint_ = rmrc_.joint_positions();
   out.position = last_setpoint_;
 
   status_.com_desired = sample_.com;
   status_.zmp_desired = sample_.zmp;
-  status_.desired_wrench = sample_.contact_wrench;
+  status_.desired_wrench = params_.stabilizer ? stabilizer_.desired() : sample_.contact_wrench;
   status_.state = name_of(fsm_.state());
 }
 

@@ -10,6 +10,7 @@
 #include "control/interface.hpp"
 #include "control/resolved_motion_rate_control.hpp"
 #include "control/sensor_check.hpp"
+#include "control/stabilizer.hpp"
 #include "control/walking_state_machine.hpp"
 #include "model/task_space.hpp"
 #include "planning/step_sequence_planner.hpp"
@@ -23,6 +24,8 @@ struct WalkingControllerParams {
   double start_shift = 0.6;       // [s] extra double support before the first step from standing
   double arm_swing_gain = 0.0;    // arm CoM forward offset per metre of foot separation (see docs/walking.md)
   ResolvedMotionRateControlParams rmrc;
+  bool stabilizer = true;           // false: the open-loop baseline (pattern → eq. (21) only)
+  StabilizerParams stabilization;
   SensorLimits sensor_limits;
 };
 
@@ -37,16 +40,20 @@ class WalkingController final : public Controller {
   WalkingState state() const { return fsm_.state(); }
   const PatternSample& pattern() const { return sample_; }
   const ResolvedMotionRateControl& rmrc() const { return rmrc_; }
+  const Stabilizer& stabilizer() const { return stabilizer_; }
 
  private:
   void replan(double t, StepDecision decision, const VelocityCommand& v);
   void task_reference(const PatternSample& s);
+  // Δx_λ, Δẋ_λ of both feet in the task rows (foot height, foot tilt against the upper body).
+  void stabilizer_modification(const PatternSample& s);
 
   const RobotModel& model_;
   WalkingControllerParams params_;
   TaskSpace space_;
   ResolvedMotionRateControl rmrc_;
   WalkingPatternGenerator pattern_;
+  Stabilizer stabilizer_;
   WalkingStateMachine fsm_;
   ControllerStatus status_;
 
@@ -57,7 +64,7 @@ class WalkingController final : public Controller {
   PatternSample sample_;
   std::array<Eigen::Vector3d, 2> arm_offset_;  // arm CoM − upper body origin, heading frame
   std::array<double, 2> arm_radius_{};          // shoulder to arm CoM
-  Eigen::VectorXd x_id_, xdot_id_;
+  Eigen::VectorXd x_id_, xdot_id_, delta_x_, delta_xdot_;
   Eigen::VectorXd last_setpoint_;
 };
 

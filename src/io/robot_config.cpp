@@ -87,6 +87,7 @@ void read_controller(const YamlReader& r, const YAML::Node& c, ControllerConfig&
     if (!fs::exists(p.model_path)) r.fail(c["model"], "controller.model", "no such file: " + p.model_path);
   }
   p.stabilizer = r.boolean_or(c, "controller", "stabilizer", p.stabilizer);
+  p.walking.stabilizer = p.stabilizer;
   p.standing.ramp_time = r.non_negative_or(c, "controller", "ramp_time", p.standing.ramp_time);
   p.software_limit_margin_rad =
       r.non_negative_or(c, "controller", "software_limit_margin_deg", p.software_limit_margin_rad / kDeg) * kDeg;

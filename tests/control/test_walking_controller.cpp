@@ -23,9 +23,14 @@ struct KinematicLoop {
   SensorData sensors;
   JointCommand out;
 
+  static WalkingControllerParams open_loop() {
+    WalkingControllerParams p;
+    p.stabilizer = false;  // the kinematic loop has no real contact forces to stabilize with
+    return p;
+  }
   explicit KinematicLoop(const std::string& robot)
       : model(test::load_model(robot)),
-        controller(model, WalkingControllerParams{}),
+        controller(model, open_loop()),
         sensors(model.num_joints()),
         out(model.num_joints()) {
     sensors.joint_position = model.stand_pose();

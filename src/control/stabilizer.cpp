@@ -1,0 +1,105 @@
+#include "control/stabilizer.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "math/rotations.hpp"
+
+namespace biped {
+namespace {
+
+Eigen::Vector3d controlled(const Wrench& w) { return {w.force.z(), w.torque.x(), w.torque.y()}; }
+
+}  // namespace
+
+// eq. (11): point contacts at the four sole corners (sensor frame), each with a quarter of the
+// foot's stiffness C. A foot displacement δ = (z, φ_x, φ_y) moves corner (x, y) by w = z + y φ_x − x φ_y
+// and the ground pushes back with f = −C/4 · w, so (F_z, T_x, T_y) = −K δ with K = Σ C/4 g gᵀ,
+// g = (1, y, −x).
+Stabilizer::Stabilizer(const RobotModel& model, const StabilizerParams& params) : model_(model), params_(params) {
+  for (Side side : kSides) {
+    const FootInfo& foot = model.foot(side);
+    Eigen::Matrix3d K = Eigen::Matrix3d::Zero();
+    for (double x : {foot.sole_x_min, foot.sole_x_max}) {
+      for (double y : {foot.sole_y_min, foot.sole_y_max}) {
+        const Eigen::Vector3d g(1.0, y, -x);
+        K += 0.25 * params.contact_stiffness * g * g.transpose();
+      }
+    }
+    stiffness_[index_of(side)] = K;
+    compliance_[index_of(side)] = K.inverse();
+  }
+}
+
+void Stabilizer::reset() {
+  for (auto& m : modification_) m = FootModification{};
+  filtered_force_ = {0.0, 0.0};
+  alpha_ = {0.0, 0.0};
+  first_ = true;
+}
+
+void Stabilizer::contact_force_modification(const std::array<Wrench, 2>& ideal,
+                                            const std::array<bool, 2>& planned_contact,
+                                            const std::array<double, 2>& load_share, double tilt_sagittal,
+                                            double tilt_lateral, double rate_sagittal, double rate_lateral) {
+  // Δx_IN = planned − measured; the plan keeps the upper body upright. Leaning forward moves the
+  // desired CoP forward (T_y = −x_CoP F_z), leaning left moves it left (T_x = y_CoP F_z).
+  const double correction_y = params_.tilt_gain * (-tilt_sagittal) + params_.tilt_rate_gain * (-rate_sagittal);
+  const double correction_x = -(params_.tilt_gain * (-tilt_lateral) + params_.tilt_rate_gain * (-rate_lateral));
+  for (Side side : kSides) {
+    const int k = index_of(side);
+    Wrench& d = desired_[k];
+    d = ideal[k];
+    if (!planned_contact[k]) {  // sat: a swing foot carries nothing
+      d.torque.setZero();
+      continue;
+    }
+    d.torque.x() += load_share[k] * correction_x;
+    d.torque.y() += load_share[k] * correction_y;
+    // sat: normal force ≥ 0, centre of pressure inside the sole with a margin.
+    const FootInfo& foot = model_.foot(side);
+    const double fz = std::max(0.0, d.force.z());
+    d.force.z() = fz;
+    const double m = params_.cop_margin;
+    d.torque.x() = std::clamp(d.torque.x(), fz * (foot.sole_y_min + m), fz * (foot.sole_y_max - m));
+    d.torque.y() = std::clamp(d.torque.y(), -fz * (foot.sole_x_max - m), -fz * (foot.sole_x_min + m));
+  }
+}
+
+void Stabilizer::hybrid_position_force_control(int k, double dt, const Wrench& measured) {
+  FootModification& mod = modification_[k];
+  const double a = alpha_[k];
+  // eq. (20): Δẋ_λ = [S_λ∇λ (S̄_x∇x)^†]^† α_λ S_λ [K_ff λ̇_d + K_λ(λ_d − λ)] + α_x K_λx (x_d − x),
+  // with S_λ∇λ(S̄_x∇x)^† = −K for the point contacts and x_d − x = −Δx_λ for the modification.
+  const Eigen::Vector3d lambda_d = controlled(desired_[k]);
+  const Eigen::Vector3d lambda_d_rate = (lambda_d - controlled(previous_desired_[k])) / dt;
+  const Eigen::Vector3d error = lambda_d - controlled(measured);
+  mod.rate = -compliance_[k] * (a * (params_.feedforward_gain * lambda_d_rate + params_.force_gain * error)) -
+             (1.0 - a) * params_.position_gain * mod.offset;
+  mod.offset += mod.rate * dt;
+  mod.offset[0] = std::clamp(mod.offset[0], -params_.max_height, params_.max_height);
+  mod.offset[1] = std::clamp(mod.offset[1], -params_.max_tilt, params_.max_tilt);
+  mod.offset[2] = std::clamp(mod.offset[2], -params_.max_tilt, params_.max_tilt);
+}
+
+void Stabilizer::step(double dt, const std::array<Wrench, 2>& ideal, const std::array<bool, 2>& planned_contact,
+                      const std::array<double, 2>& load_share, const std::array<Wrench, 2>& measured,
+                      const Eigen::Quaterniond& imu_orientation, const Eigen::Vector3d& imu_rate) {
+  const math::TiltAngles tilt = math::tilt_against_gravity(imu_orientation.toRotationMatrix());
+  // Small-angle rates of the two tilt angles from the body-frame angular rate.
+  contact_force_modification(ideal, planned_contact, load_share, tilt.sagittal, tilt.lateral, imu_rate.y(),
+                             -imu_rate.x());
+  if (first_) previous_desired_ = desired_;
+  first_ = false;
+  const double filter = dt / (params_.contact_filter_time + dt);
+  for (int k = 0; k < 2; ++k) {
+    filtered_force_[k] += filter * (measured[k].force.z() - filtered_force_[k]);
+    const double contact =
+        std::clamp((filtered_force_[k] - params_.contact_force_low) / (params_.contact_force_high - params_.contact_force_low), 0.0, 1.0);
+    alpha_[k] = planned_contact[k] ? contact : 0.0;
+    hybrid_position_force_control(k, dt, measured[k]);
+  }
+  previous_desired_ = desired_;
+}
+
+}  // namespace biped

@@ -1,0 +1,76 @@
+#pragma once
+// The stabilizing control of the paper's Section IV:
+//   contact force modification, eq. (10): λ_d = sat(λ_id + K_P Δx_IN + K_D Δẋ_IN), here with the
+//     upper body's inclination φ_UB (from the IMU) as x_IN;
+//   hybrid position/force control, eqs. (11)–(20): per foot, the normal force and the two contact-
+//     plane torques are tracked by modifying the foot's height and tilt, through the explicit
+//     point-contact model of eq. (11) (the four sole corners, stiffness C each quarter of the foot's).
+// With the point-contact model the map S_λ∇_qλ(S̄_x∇_q x)^† of eq. (20) is, per foot, minus the
+// 3×3 contact stiffness K of (z, φ_x, φ_y) → (F_z, T_x, T_y); this implementation uses that small
+// matrix (docs/stabilizer.md). Feet without contact blend to position control (α_λ → 0), which
+// returns their modification to zero.
+#include <Eigen/Core>
+#include <array>
+
+#include "control/interface.hpp"
+#include "model/robot_model.hpp"
+
+namespace biped {
+
+struct StabilizerParams {
+  double tilt_gain = 600.0;          // K_P [N·m/rad]: foot torque per radian of upper-body tilt error
+  double tilt_rate_gain = 60.0;      // K_D [N·m·s/rad]
+  double force_gain = 20.0;          // K_λ [1/s]
+  double feedforward_gain = 1.0;     // K_λ,ff
+  double position_gain = 5.0;        // K_λx [1/s]: return of the modification without contact
+  double contact_stiffness = 4.0e5;  // C of eq. (11) per foot [N/m]
+  double cop_margin = 0.02;          // [m] the desired CoP stays this far inside the sole
+  double contact_filter_time = 0.02; // [s] first-order filter of the measured normal force
+  double contact_force_low = 30.0;   // [N] filtered normal force: force control starts above ...
+  double contact_force_high = 150.0; // ... and is complete above this
+  double max_tilt = 0.15;            // [rad] bound of the foot tilt modification
+  double max_height = 0.02;          // [m] bound of the foot height modification
+};
+
+// Per-foot modification of the position-controlled foot coordinates (foot frame).
+struct FootModification {
+  Eigen::Vector3d offset = Eigen::Vector3d::Zero();  // Δx_λ: (z, φ_x, φ_y)
+  Eigen::Vector3d rate = Eigen::Vector3d::Zero();    // Δẋ_λ
+};
+
+class Stabilizer {
+ public:
+  Stabilizer(const RobotModel& model, const StabilizerParams& params);
+  void reset();
+
+  // One cycle. `ideal`: λ_id of both feet (sensor frames); `planned_contact`: the pattern's contact
+  // schedule; `load_share`: the pattern's split of the load; `measured`: the F/T readings;
+  // `imu_orientation`, `imu_rate`: the upper body's orientation and angular rate (IMU frame).
+  void step(double dt, const std::array<Wrench, 2>& ideal, const std::array<bool, 2>& planned_contact,
+            const std::array<double, 2>& load_share, const std::array<Wrench, 2>& measured,
+            const Eigen::Quaterniond& imu_orientation, const Eigen::Vector3d& imu_rate);
+
+  const std::array<Wrench, 2>& desired() const { return desired_; }
+  const std::array<FootModification, 2>& modification() const { return modification_; }
+  const std::array<double, 2>& force_control_share() const { return alpha_; }
+
+ private:
+  // eq. (10) with its saturation.
+  void contact_force_modification(const std::array<Wrench, 2>& ideal, const std::array<bool, 2>& planned_contact,
+                                  const std::array<double, 2>& load_share, double tilt_sagittal,
+                                  double tilt_lateral, double rate_sagittal, double rate_lateral);
+  // eq. (20) for one foot.
+  void hybrid_position_force_control(int foot, double dt, const Wrench& measured);
+
+  const RobotModel& model_;
+  StabilizerParams params_;
+  std::array<Eigen::Matrix3d, 2> stiffness_;  // K per foot, eq. (11)
+  std::array<Eigen::Matrix3d, 2> compliance_; // K⁻¹
+  std::array<Wrench, 2> desired_, previous_desired_;
+  std::array<FootModification, 2> modification_;
+  std::array<double, 2> filtered_force_ = {0.0, 0.0};
+  std::array<double, 2> alpha_ = {0.0, 0.0};
+  bool first_ = true;
+};
+
+}  // namespace biped
