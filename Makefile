@@ -1,7 +1,7 @@
 # Thin wrapper around CMake. Every target installs missing Debian packages first.
 BUILD_DIR ?= build
 JOBS      ?= 2
-SCENARIO  ?= config/scenarios/lola-walk-open-loop.yaml
+SCENARIO  ?= config/scenarios/lola-walk.yaml
 
 .PHONY: all deps configure build test demo bench clean
 

@@ -149,12 +149,13 @@ TEST(BipedRun, SameScenarioAndSeedGiveIdenticalLogs) {
 }
 
 TEST(BipedRun, ShippedScenariosRun) {
-  for (const char* name : {"lola-stand", "johnnie-stand"}) {
+  for (const char* name : {"lola-stand", "johnnie-stand", "lola-walk", "johnnie-walk", "lola-weight-shift",
+                           "johnnie-weight-shift", "lola-walk-open-loop", "johnnie-walk-open-loop"}) {
     const fs::path out = work_dir() / name;
     const Outcome o = biped("run " + biped::test::source_path(std::string("config/scenarios/") + name + ".yaml") +
                             " --set duration=0.5 --out " + out.string());
     EXPECT_EQ(o.status, 0) << o.err;
-    EXPECT_NE(o.out.find("no fall"), std::string::npos) << o.out;
+    EXPECT_NE(o.out.find("no fall"), std::string::npos) << name << ": " << o.out;
   }
 }
 
