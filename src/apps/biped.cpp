@@ -5,7 +5,9 @@
 #include <filesystem>
 #include <iostream>
 
+#include "io/output_files.hpp"
 #include "io/robot_config.hpp"
+#include "io/step_tables.hpp"
 #include "io/scenario.hpp"
 #include "io/scenario_runner.hpp"
 #include "io/yaml_reader.hpp"
@@ -34,6 +36,26 @@ int run_command(const std::string& scenario_path, const std::string& out_option,
   return 0;
 }
 
+int tables_command(const std::string& robot, const std::string& out_option) {
+  biped::Scenario scenario;
+  scenario.file = "biped tables --robot";
+  scenario.robot = robot;
+  scenario.duration = 1.0;
+  const biped::RunConfig config = biped::make_run_config(scenario);
+  const biped::RobotModel model = biped::load_controller_model(config);
+  const std::string out = out_option.empty()
+                              ? (std::filesystem::path(biped::data_directory()) / "config" / "tables" / (config.robot + ".csv")).string()
+                              : out_option;
+  biped::prepare_output_directory(std::filesystem::path(out).parent_path().string());
+  biped::AtomicOutputFile file(out);
+  const biped::StepTable table =
+      biped::generate_step_table(model, config.controller.walking, biped::StepTableSearch{}, &config.sim, &std::cout);
+  biped::write_step_table(table, file.stream());
+  file.commit();
+  std::printf("step table: %s\n", out.c_str());
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -48,6 +70,11 @@ int main(int argc, char** argv) {
   run->add_option("--set", overrides, "Override a scenario key, e.g. --set controller.stabilizer=false")
       ->type_name("KEY=VALUE");
 
+  std::string robot, table_out;
+  CLI::App* tables = app.add_subcommand("tables", "Generate the off-line step table of a robot (config/tables/NAME.csv)");
+  tables->add_option("--robot", robot, "Robot name (a file config/robots/NAME.yaml)")->required();
+  tables->add_option("--out", table_out, "Output CSV (default: config/tables/<robot>.csv)");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -57,6 +84,7 @@ int main(int argc, char** argv) {
 
   try {
     if (*run) return run_command(scenario_path, out_dir, overrides);
+    if (*tables) return tables_command(robot, table_out);
   } catch (const biped::InputError& e) {
     std::cerr << "error: " << e.what() << '\n';
     return kExitBadInput;

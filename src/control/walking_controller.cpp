@@ -102,21 +102,22 @@ void WalkingController::reset(const SensorData& first) {
 void WalkingController::replan(double t, StepDecision decision, const VelocityCommand& v) {
   PatternSample now;
   pattern_.sample(t, now);
+  const StepParameters step = params_.table.lookup(decision == StepDecision::StopStep ? 0.0 : v.vx, params_.step);
   switch (decision) {
     case StepDecision::StartWalk: {
       // Step first with the foot on the side the robot moves or turns to.
       const Side first_swing = (v.vy > 1e-3 || (std::abs(v.vy) <= 1e-3 && v.omega > 1e-3)) ? Side::Left : Side::Right;
       const Footstep& stance = feet_[index_of(first_swing == Side::Left ? Side::Right : Side::Left)];
-      plan_steps(stance, v, params_.step, t + params_.step.step_time + params_.start_shift, 3, planned_);
+      plan_steps(stance, v, step, t + step.step_time + params_.start_shift, 3, planned_);
       num_planned_ = 3;
       break;
     }
     case StepDecision::Continue:
-      plan_steps(feet_[index_of(planned_[0].side)], v, params_.step, t + params_.step.step_time, 3, planned_);
+      plan_steps(feet_[index_of(planned_[0].side)], v, step, t + step.step_time, 3, planned_);
       num_planned_ = 3;
       break;
     case StepDecision::StopStep:
-      plan_steps(feet_[index_of(planned_[0].side)], VelocityCommand{}, params_.step, t + params_.step.step_time, 1,
+      plan_steps(feet_[index_of(planned_[0].side)], VelocityCommand{}, step, t + step.step_time, 1,
                  planned_);
       num_planned_ = 1;
       break;
@@ -126,7 +127,7 @@ void WalkingController::replan(double t, StepDecision decision, const VelocityCo
     case StepDecision::None:
       return;
   }
-  pattern_.replan(t, feet_, planned_, num_planned_, params_.step, now.body_x, now.body_y, now.zmp);
+  pattern_.replan(t, feet_, planned_, num_planned_, step, now.body_x, now.body_y, now.zmp);
 }
 
 // Table I coordinates of the pattern sample (see model/task_space.hpp for the rows).

@@ -14,12 +14,14 @@
 #include "control/walking_state_machine.hpp"
 #include "model/task_space.hpp"
 #include "planning/step_sequence_planner.hpp"
+#include "planning/step_table.hpp"
 #include "planning/walking_pattern_generator.hpp"
 
 namespace biped {
 
 struct WalkingControllerParams {
   StepParameters step;            // step time, double support, clearance, width (com_height: measured)
+  StepTable table;                // off-line table: step time, double support, clearance by speed (empty: `step`)
   CommandLimits limits;           // feasible commands; beyond them the command is saturated
   double start_shift = 0.6;       // [s] extra double support before the first step from standing
   double arm_swing_gain = 0.0;    // arm CoM forward offset per metre of foot separation (see docs/walking.md)

@@ -4,6 +4,7 @@
 #include <cstdlib>
 #include <filesystem>
 
+#include "io/step_tables.hpp"
 #include "io/yaml_reader.hpp"
 
 namespace fs = std::filesystem;
@@ -49,7 +50,7 @@ void read_controller(const YamlReader& r, const YAML::Node& c, ControllerConfig&
   r.expect_keys(c, "controller", {"type", "model", "stabilizer", "ramp_time", "software_limit_margin_deg", "step_time",
                                   "double_support_ratio", "clearance", "start_shift", "arm_swing_gain", "task_gain",
                                   "null_space_gain", "joint_velocity_limit", "limits", "stance", "lift_height", "shift_time",
-                                  "lift_time", "hold_time"});
+                                  "lift_time", "hold_time", "step_table"});
   if (!c) return;
   p.type = r.text_or(c, "controller", "type", p.type);
   if (p.type != "walking" && p.type != "standing" && p.type != "weight_shift") {
@@ -64,6 +65,12 @@ void read_controller(const YamlReader& r, const YAML::Node& c, ControllerConfig&
   ws.lift_time = r.positive_or(c, "controller", "lift_time", ws.lift_time);
   ws.hold_time = r.non_negative_or(c, "controller", "hold_time", ws.hold_time);
   WalkingControllerParams& w = p.walking;
+  if (c["step_table"]) {
+    const std::string table = resolve(r.text(c, "controller", "step_table"), r.file());
+    if (!fs::exists(table)) r.fail(c["step_table"], "controller.step_table", "no such file: " + table);
+    w.table = read_step_table(table);
+    w.limits.vx_max = std::min(w.limits.vx_max, fastest_feasible_speed(w.table));
+  }
   w.step.step_time = r.positive_or(c, "controller", "step_time", w.step.step_time);
   w.step.double_support_ratio = r.positive_or(c, "controller", "double_support_ratio", w.step.double_support_ratio);
   if (w.step.double_support_ratio >= 0.8) r.fail(c["double_support_ratio"], "controller.double_support_ratio", "must be below 0.8");

@@ -74,9 +74,11 @@ void WalkingPatternGenerator::replan(double t0, const std::array<Footstep, 2>& f
                   2.0 * params_.leg_mass * (params_.ankle_height + params_.leg_com_height)) / params_.body_mass;
 
   const double last_touchdown = num_steps_ > 0 ? steps_[num_steps_ - 1].touchdown : t0;
-  const double t_end = last_touchdown + double_support_time_ + params_.final_rest_time;
+  // Coming to rest (no steps), the ZMP moves to the middle of the feet in the settle time.
+  const double final_shift = num_steps_ > 0 ? double_support_time_ : std::max(double_support_time_, params_.settle_time);
+  const double t_end = last_touchdown + final_shift + params_.final_rest_time;
   collocation_.set_horizon(t0, t_end);
-  shape1_duration_ = std::max(num_steps_ > 0 ? liftoff(0) - t0 : double_support_time_, 0.05);
+  shape1_duration_ = std::max(num_steps_ > 0 ? liftoff(0) - t0 : final_shift, 0.05);
   shape2_duration_ = num_steps_ > 0 ? shape1_duration_ : 0.5 * (t_end - t0);
 
   // Dividing the model equation by m_b: z_b ẍ_b − g x_b + W p̃ = −(1/m_b) Σ_i m_i [z_i ẍ_i − x_i (z̈_i + g)]
@@ -137,7 +139,8 @@ void WalkingPatternGenerator::reference_zmp(double t, Eigen::Vector2d& zmp, doub
   };
   if (num_steps_ == 0) {
     phase_step = -1;
-    blend(zmp_start_, 0.5 * (zmp_point(feet_[0]) + zmp_point(feet_[1])), t0_);
+    share_of_new = std::clamp((t - t0_) / shape1_duration_, 0.0, 1.0);
+    zmp = zmp_start_ + share_of_new * (0.5 * (zmp_point(feet_[0]) + zmp_point(feet_[1])) - zmp_start_);
     return;
   }
   // Before the first step lifts off: from the current ZMP to the first stance foot (a start from

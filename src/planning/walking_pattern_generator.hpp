@@ -26,6 +26,7 @@ struct PatternGeneratorParams {
   double mass_below_sensor = 0.0;  // [kg] per foot, carried by the ground directly
   double arm_swing_gain = 0.15;    // arm CoM forward offset per metre of foot separation
   double final_rest_time = 0.5;    // [s] the horizon ends this long after the last double support
+  double settle_time = 1.0;        // [s] coming to rest without steps: the ZMP moves to mid-feet
   int collocation_intervals = 48;
 };
 

@@ -1,0 +1,200 @@
+#include "io/step_tables.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <deque>
+#include <fstream>
+#include <limits>
+#include <ostream>
+#include <sstream>
+
+#include "io/yaml_reader.hpp"
+#include "model/multibody_zmp.hpp"
+#include "sim/closed_loop.hpp"
+
+namespace biped {
+namespace {
+
+// Signed distance of a point to the edge of a foot's sole rectangle (positive inside).
+double sole_margin(const RobotModel& model, Side side, const Eigen::Vector2d& point, const Eigen::Vector2d& ankle,
+                   double yaw) {
+  const FootInfo& foot = model.foot(side);
+  const double sensor_x = model.mj()->site_pos[3 * foot.sensor_site];
+  const double sensor_y = model.mj()->site_pos[3 * foot.sensor_site + 1];
+  const Eigen::Vector2d d = point - ankle;
+  const double c = std::cos(yaw), s = std::sin(yaw);
+  const double x = c * d.x() + s * d.y() - sensor_x, y = -s * d.x() + c * d.y() - sensor_y;
+  return std::min({x - foot.sole_x_min, foot.sole_x_max - x, y - foot.sole_y_min, foot.sole_y_max - y});
+}
+
+// Margin inside the support polygon: the stance sole in single support; in double support the
+// best of the soles swept from one foot to the other (the convex hull of the two rectangles).
+double support_margin(const RobotModel& model, const PatternSample& s, const Eigen::Vector2d& zmp) {
+  if (!s.feet[0].in_contact) return sole_margin(model, Side::Right, zmp, s.feet[1].position.head<2>(), s.feet[1].yaw);
+  if (!s.feet[1].in_contact) return sole_margin(model, Side::Left, zmp, s.feet[0].position.head<2>(), s.feet[0].yaw);
+  double best = -std::numeric_limits<double>::infinity();
+  for (int i = 0; i <= 20; ++i) {
+    const double a = i / 20.0;
+    const Eigen::Vector2d ankle = (1 - a) * s.feet[0].position.head<2>() + a * s.feet[1].position.head<2>();
+    const double yaw = s.feet[0].yaw + a * std::remainder(s.feet[1].yaw - s.feet[0].yaw, 2 * M_PI);
+    best = std::max(best, sole_margin(model, a < 0.5 ? Side::Left : Side::Right, zmp, ankle, yaw));
+  }
+  return best;
+}
+
+}  // namespace
+
+CandidateResult evaluate_step_candidate(const RobotModel& model, const WalkingControllerParams& base, double speed,
+                                        double step_time, double double_support_ratio, int steps) {
+  WalkingControllerParams params = base;
+  params.stabilizer = false;
+  params.table = StepTable{};
+  params.limits.vx_max = std::max(params.limits.vx_max, speed);  // judge the speed itself, unsaturated
+  params.step.step_time = step_time;
+  params.step.double_support_ratio = double_support_ratio;
+  WalkingController controller(model, params);
+  SensorData sensors(model.num_joints());
+  sensors.joint_position = model.stand_pose();
+  sensors.imu_acceleration = Eigen::Vector3d(0, 0, 9.81);
+  for (Wrench& w : sensors.foot_wrench) w.force.z() = 0.5 * model.weight_above_sensors();
+  controller.reset(sensors);
+  JointCommand out(model.num_joints());
+  RobotData data(model);
+  const double dt = params.rmrc.dt;
+  const double start = 0.5;
+  const double duration = start + params.start_shift + (steps + 1) * step_time;
+  const int com_row = TaskSpace(model).layout().com;
+  std::deque<Eigen::VectorXd> history;
+  CandidateResult result;
+  result.feasible = true;
+  result.zmp_margin = std::numeric_limits<double>::infinity();
+  for (int i = 0; i * dt < duration; ++i) {
+    sensors.time = i * dt;
+    WalkCommand command;
+    command.vx = sensors.time >= start ? speed : 0.0;
+    controller.step(sensors, command, out);
+    sensors.joint_position = out.position;
+    const ResolvedMotionRateControl& rmrc = controller.rmrc();
+    if (rmrc.locked_joints() > 0 || rmrc.velocity_scale() < 1.0 ||
+        (rmrc.x().segment<3>(com_row) - controller.pattern().com).norm() > 0.01) {
+      result.feasible = false;
+    }
+    history.push_back(rmrc.qpos_d());
+    if (history.size() > 3) history.pop_front();
+    if (history.size() == 3 && i % 10 == 0) {
+      const Eigen::Vector2d zmp = multibody_zmp(model, data, history[0], history[1], history[2], dt);
+      result.zmp_margin = std::min(result.zmp_margin, support_margin(model, controller.pattern(), zmp));
+    }
+  }
+  return result;
+}
+
+bool survives_in_simulation(const RobotModel& model, const WalkingControllerParams& base,
+                            const SimulationParams& sim_params, double speed, double turn_rate, double step_time,
+                            double double_support_ratio, int steps) {
+  WalkingControllerParams params = base;
+  params.stabilizer = true;
+  params.table = StepTable{};
+  params.step.step_time = step_time;
+  params.step.double_support_ratio = double_support_ratio;
+  params.limits.vx_max = std::max(params.limits.vx_max, speed);
+  WalkingController controller(model, params);
+  Simulation sim(sim_params, model);
+  TimedCommand start;
+  start.t = 0.5;
+  start.command.vx = speed;
+  start.command.omega = turn_rate;
+  RunOptions options;
+  options.duration = start.t + params.start_shift + (steps + 1) * step_time;
+  options.run_on_after_fall = 0.0;
+  return !run_closed_loop(sim, controller, {TimedCommand{}, start}, options, nullptr).fell;
+}
+
+StepTable generate_step_table(const RobotModel& model, const WalkingControllerParams& base,
+                              const StepTableSearch& search, const SimulationParams* sim, std::ostream* progress) {
+  StepTable table;
+  for (double speed : search.speeds) {
+    StepTableRow best;
+    best.speed = speed;
+    best.clearance = base.step.clearance;
+    if (speed == 0.0) {
+      // A zero command means standing (the FSM stops): no gait to choose. The row keeps the nominal
+      // parameters, which the stop step uses, and records the standing margin.
+      best.step_time = base.step.step_time;
+      best.double_support_ratio = base.step.double_support_ratio;
+      best.zmp_margin = evaluate_step_candidate(model, base, 0.0, best.step_time, best.double_support_ratio, 1).zmp_margin;
+      table.rows.push_back(best);
+      continue;
+    }
+    bool best_feasible = false;
+    double best_margin = -std::numeric_limits<double>::infinity();
+    for (double step_time : search.step_times) {
+      for (double ds : search.double_support_ratios) {
+        CandidateResult r = evaluate_step_candidate(model, base, speed, step_time, ds, search.steps);
+        if (r.feasible && sim) {
+          r.feasible = survives_in_simulation(model, base, *sim, speed, search.turn_rate, step_time, ds, search.steps);
+        }
+        const bool better = (r.feasible && !best_feasible) || (r.feasible == best_feasible && r.zmp_margin > best_margin);
+        if (!better) continue;
+        best_feasible = r.feasible;
+        best_margin = r.zmp_margin;
+        best.step_time = step_time;
+        best.double_support_ratio = ds;
+        best.zmp_margin = r.feasible ? r.zmp_margin : std::min(0.0, r.zmp_margin);
+      }
+    }
+    if (progress) {
+      *progress << "speed " << speed << " m/s: step time " << best.step_time << " s, double support "
+                << best.double_support_ratio << ", ZMP margin " << 1000.0 * best.zmp_margin << " mm"
+                << (best_feasible ? "" : " (no feasible candidate)") << '\n';
+    }
+    table.rows.push_back(best);
+  }
+  return table;
+}
+
+void write_step_table(const StepTable& table, std::ostream& out) {
+  out << "speed,step_time,double_support_ratio,clearance,zmp_margin_m\n";
+  for (const StepTableRow& r : table.rows) {
+    out << r.speed << ',' << r.step_time << ',' << r.double_support_ratio << ',' << r.clearance << ',' << r.zmp_margin
+        << '\n';
+  }
+}
+
+StepTable read_step_table(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw InputError(path + ": cannot open step table");
+  std::string line;
+  std::getline(in, line);
+  if (line != "speed,step_time,double_support_ratio,clearance,zmp_margin_m") {
+    throw InputError(path + ":1: not a step table (expected the header speed,step_time,double_support_ratio,clearance,zmp_margin_m)");
+  }
+  StepTable table;
+  for (int number = 2; std::getline(in, line); ++number) {
+    if (line.empty()) continue;
+    std::stringstream row(line);
+    StepTableRow r;
+    char c1, c2, c3, c4;
+    if (!(row >> r.speed >> c1 >> r.step_time >> c2 >> r.double_support_ratio >> c3 >> r.clearance >> c4 >> r.zmp_margin) ||
+        c1 != ',' || c2 != ',' || c3 != ',' || c4 != ',' || !std::isfinite(r.speed) || !(r.step_time > 0.0) ||
+        !(r.double_support_ratio > 0.0 && r.double_support_ratio < 0.8) || r.clearance < 0.0) {
+      throw InputError(path + ":" + std::to_string(number) + ": malformed step table row '" + line + "'");
+    }
+    if (!table.rows.empty() && r.speed <= table.rows.back().speed) {
+      throw InputError(path + ":" + std::to_string(number) + ": speeds must increase");
+    }
+    table.rows.push_back(r);
+  }
+  if (table.rows.empty()) throw InputError(path + ": the step table has no rows");
+  return table;
+}
+
+double fastest_feasible_speed(const StepTable& table) {
+  double fastest = 0.0;
+  for (const StepTableRow& r : table.rows) {
+    if (r.zmp_margin > 0.0) fastest = std::max(fastest, r.speed);
+  }
+  return fastest;
+}
+
+}  // namespace biped

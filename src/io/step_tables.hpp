@@ -1,0 +1,60 @@
+#pragma once
+// Off-line step tables: generation (`biped tables --robot NAME`) and the CSV file format.
+//
+// For each commanded forward speed of a grid, every candidate (step time, double-support share) is
+// walked by the walking controller on its own kinematic loop (no simulation: the planned motion
+// itself) and judged by
+//   1. kinematic feasibility through eq. (21): no joint held at a software limit, no joint-rate
+//      limiting, the CoM tracked within 1 cm;
+//   2. the ZMP margin of the full multibody model: the ZMP of the planned motion by inverse dynamics
+//      (mj_inverse), its smallest distance to the edge of the support polygon over the walk;
+//   3. (when simulation parameters are given) the same gait walked in the full simulation with the
+//      stabilizer, turning at `turn_rate`, without a fall: the kinematic criteria alone admitted long
+//      steps with short double support that fell in closed loop while turning.
+// The feasible candidate with the largest margin is chosen (if none is feasible, the one with the
+// largest margin, and the row says so with a negative or zero margin). Speed 0 is standing: its row
+// keeps the nominal parameters (used by the stop step). The fastest row with a positive margin
+// bounds the commands the planner accepts (faster ones are saturated).
+#include <iosfwd>
+#include <string>
+
+#include "control/walking_controller.hpp"
+#include "planning/step_table.hpp"
+#include "sim/simulation.hpp"
+
+namespace biped {
+
+struct StepTableSearch {
+  std::vector<double> speeds = {0.0, 0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9, 1.0};
+  std::vector<double> step_times = {0.6, 0.7, 0.8, 0.9, 1.0};
+  std::vector<double> double_support_ratios = {0.1, 0.15, 0.2, 0.3};
+  int steps = 6;           // steps walked per candidate
+  double turn_rate = 0.15;  // [rad/s] of the closed-loop check
+};
+
+struct CandidateResult {
+  bool feasible = false;
+  double zmp_margin = 0.0;
+};
+
+// Judges one candidate at one speed (criteria above).
+CandidateResult evaluate_step_candidate(const RobotModel& model, const WalkingControllerParams& base, double speed,
+                                        double step_time, double double_support_ratio, int steps);
+// Criterion 3: true when the gait walks `steps` steps in the simulation without a fall.
+bool survives_in_simulation(const RobotModel& model, const WalkingControllerParams& base,
+                            const SimulationParams& sim, double speed, double turn_rate, double step_time,
+                            double double_support_ratio, int steps);
+
+// Builds the table; `sim` (may be null) enables criterion 3; `progress` (may be null) gets one line
+// per speed.
+StepTable generate_step_table(const RobotModel& model, const WalkingControllerParams& base,
+                              const StepTableSearch& search, const SimulationParams* sim, std::ostream* progress);
+
+// CSV: header `speed,step_time,double_support_ratio,clearance,zmp_margin_m`, one row per speed.
+void write_step_table(const StepTable& table, std::ostream& out);
+// Throws InputError naming the file and line for a malformed file.
+StepTable read_step_table(const std::string& path);
+// The fastest speed of the table whose choice has a positive ZMP margin (0 if none).
+double fastest_feasible_speed(const StepTable& table);
+
+}  // namespace biped

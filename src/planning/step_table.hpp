@@ -1,0 +1,27 @@
+#pragma once
+// Off-line step tables (Fig. 3): for a grid of commanded forward speeds, the step parameters chosen
+// off-line (`biped tables`). The planner interpolates them at run time.
+#include <vector>
+
+#include "planning/footstep.hpp"
+
+namespace biped {
+
+struct StepTableRow {
+  double speed = 0.0;  // commanded forward speed [m/s]
+  double step_time = 0.8;
+  double double_support_ratio = 0.2;
+  double clearance = 0.04;
+  double zmp_margin = 0.0;  // [m] the criterion's value for this choice (for the record)
+};
+
+struct StepTable {
+  std::vector<StepTableRow> rows;  // by increasing speed
+
+  bool empty() const { return rows.empty(); }
+  // Step time, double-support share and clearance for |speed|, linearly interpolated between rows
+  // and held beyond the ends; the rest of `base` (width, CoM height) is kept.
+  StepParameters lookup(double speed, const StepParameters& base) const;
+};
+
+}  // namespace biped
