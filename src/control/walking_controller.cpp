@@ -90,10 +90,10 @@ void WalkingController::reset(const SensorData& first) {
     Eigen::Vector3d arm = data.com;
     arm.head(L.arm_com_rows) += data.x.segment(L.arm_com[index_of(side)], L.arm_com_rows);
     arm_offset_[index_of(side)] = yaw_rotation(-heading) * (arm - body);
-    // The arm swings about its shoulder's pitch axis: the CoM rises on an arc of this radius.
+    // The arm swings as a rigid body about its shoulder's pitch axis (the upper body's y axis
+    // through the shoulder): the pivot relative to the upper body, in the heading frame.
     const int shoulder = mj_name2id(model_.mj(), mjOBJ_JOINT, (std::string(name_of(side)) + "_shoulder_pitch").c_str());
-    const Eigen::Vector3d lever = yaw_rotation(-heading) * (arm - Eigen::Vector3d(d->xanchor + 3 * shoulder));
-    arm_radius_[index_of(side)] = std::max(0.05, std::hypot(lever.x(), lever.z()));
+    arm_pivot_[index_of(side)] = yaw_rotation(-heading) * (Eigen::Vector3d(d->xanchor + 3 * shoulder) - body);
   }
   for (int i = 0; i < model_.num_joints(); ++i) last_setpoint_[i] = q[model_.joints()[i].qpos_adr];
   status_.state = name_of(fsm_.state());
@@ -134,7 +134,6 @@ void WalkingController::replan(double t, StepDecision decision, const VelocityCo
 void WalkingController::task_reference(const PatternSample& s) {
   const TaskLayout& L = space_.layout();
   const Eigen::Matrix3d heading = yaw_rotation(s.heading);
-  const Eigen::Vector3d forward = heading.col(0);
   for (Side side : kSides) {
     const int k = index_of(side);
     const FootReference& foot = s.feet[k];
@@ -147,12 +146,15 @@ void WalkingController::task_reference(const PatternSample& s) {
     const double swing_rate = side == Side::Right ? s.arm_swing_rate : -s.arm_swing_rate;
     // The upper body where eq. (21)'s own kinematic state has it (last cycle), moving like the CoM.
     const Eigen::Vector3d& body = rmrc_.task().upper_body_position;
-    const double r = arm_radius_[k];
-    const Eigen::Vector3d offset =
-        heading * arm_offset_[k] + swing * forward + 0.5 * swing * swing / r * Eigen::Vector3d::UnitZ();
+    // Rotation about the shoulder's pitch axis by the angle that moves the CoM forward by `swing`.
+    const Eigen::Vector3d lever = arm_offset_[k] - arm_pivot_[k];
+    const double radius = std::max(0.05, std::hypot(lever.x(), lever.z()));
+    const double angle = swing / radius, angle_rate = swing_rate / radius;
+    const Eigen::Vector3d swung = Eigen::AngleAxisd(-angle, Eigen::Vector3d::UnitY()) * lever;
+    const Eigen::Vector3d offset = heading * (arm_pivot_[k] + swung);
     const Eigen::Vector3d arm = body + offset - rmrc_.task().com;
     const Eigen::Vector3d arm_rate = s.heading_rate * Eigen::Vector3d::UnitZ().cross(offset) +
-                                     swing_rate * (forward + swing / r * Eigen::Vector3d::UnitZ());
+                                     heading * (-angle_rate * Eigen::Vector3d::UnitY().cross(swung));
     x_id_.segment(L.arm_com[k], L.arm_com_rows) = arm.head(L.arm_com_rows);
     xdot_id_.segment(L.arm_com[k], L.arm_com_rows) = arm_rate.head(L.arm_com_rows);
   }

@@ -24,7 +24,7 @@ struct WalkingControllerParams {
   StepTable table;                // off-line table: step time, double support, clearance by speed (empty: `step`)
   CommandLimits limits;           // feasible commands; beyond them the command is saturated
   double start_shift = 0.6;       // [s] extra double support before the first step from standing
-  double arm_swing_gain = 0.0;    // arm CoM forward offset per metre of foot separation (see docs/walking.md)
+  double arm_swing_gain = 0.1;    // arm CoM forward offset per metre of foot separation
   ResolvedMotionRateControlParams rmrc;
   bool stabilizer = true;           // false: the open-loop baseline (pattern → eq. (21) only)
   StabilizerParams stabilization;
@@ -65,7 +65,7 @@ class WalkingController final : public Controller {
   int num_planned_ = 0;
   PatternSample sample_;
   std::array<Eigen::Vector3d, 2> arm_offset_;  // arm CoM − upper body origin, heading frame
-  std::array<double, 2> arm_radius_{};          // shoulder to arm CoM
+  std::array<Eigen::Vector3d, 2> arm_pivot_;   // shoulder pitch axis − upper body origin, heading frame
   Eigen::VectorXd x_id_, xdot_id_, delta_x_, delta_xdot_;
   Eigen::VectorXd last_setpoint_;
 };

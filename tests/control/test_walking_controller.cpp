@@ -148,6 +148,35 @@ TEST_P(WalkingControllerTest, ACycleAllocatesNothing) {
   EXPECT_GT(loop.controller.status().steps_completed, 2);
 }
 
+// The arms swing against the legs (the right arm forward when the left foot is ahead), as rigid
+// bodies about the shoulders, so the elbows keep their bend (away from the stretched singularity).
+TEST_P(WalkingControllerTest, ArmsSwingAgainstTheLegs) {
+  KinematicLoop loop(GetParam());
+  const TaskSpace space(loop.model);
+  const TaskLayout& L = space.layout();
+  int agreeing = 0, samples = 0;
+  for (int i = 0; i < 6000; ++i) {
+    WalkCommand command;
+    command.vx = i > 1000 ? 0.5 : 0.0;
+    loop.cycle(i * 0.001, command);
+    if (i < 2500 || i % 20 != 0) continue;
+    const PatternSample& s = loop.controller.pattern();
+    const double legs = (s.feet[0].position - s.feet[1].position).x();  // left ahead: > 0
+    if (std::abs(legs) < 0.1) continue;
+    const Eigen::VectorXd& x = loop.controller.rmrc().x();
+    const double arms = x[L.arm_com[index_of(Side::Right)]] - x[L.arm_com[index_of(Side::Left)]];  // right ahead: > 0
+    agreeing += (legs > 0) == (arms > 0);
+    ++samples;
+    for (const char* elbow : {"left_elbow", "right_elbow"}) {
+      const int j = loop.model.joint_index(elbow);
+      if (j < 0) continue;  // JOHNNIE's arms have no elbow
+      EXPECT_LT(loop.out.position[j], -0.15) << elbow << " stretched at t = " << i * 0.001;
+    }
+  }
+  ASSERT_GT(samples, 50);
+  EXPECT_EQ(agreeing, samples);
+}
+
 INSTANTIATE_TEST_SUITE_P(Robots, WalkingControllerTest, ::testing::Values("lola", "johnnie"));
 
 }  // namespace
