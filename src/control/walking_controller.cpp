@@ -187,11 +187,8 @@ void WalkingController::step(const SensorData& sensors, const WalkCommand& comma
       status_.fault_reason = fault;
     }
   }
-  if (fsm_.state() == WalkingState::SafeStop) {
-    status_.state = name_of(fsm_.state());
-    out.position = last_setpoint_;
-    return;
-  }
+  // After a fault no sensor is trusted: the stop runs on the pattern and eq. (21) alone.
+  const bool use_sensors = !status_.fault;
 
   const double t = sensors.time - start_time_;
   bool saturated = false;
@@ -207,10 +204,15 @@ void WalkingController::step(const SensorData& sensors, const WalkCommand& comma
 
   pattern_.sample(t, sample_);
   task_reference(sample_);
-  if (params_.stabilizer) {
+  if (params_.stabilizer && use_sensors) {
     stabilizer_.step(params_.rmrc.dt, sample_.contact_wrench, {sample_.feet[0].in_contact, sample_.feet[1].in_contact},
                      sample_.load_share, sensors.foot_wrench, sensors.imu_orientation, sensors.imu_angular_rate);
     stabilizer_modification(sample_);
+  } else if (!use_sensors) {
+    // Without force feedback the feet's modifications return to the plan.
+    const double decay = std::exp(-params_.stabilization.position_gain * params_.rmrc.dt);
+    delta_x_ *= decay;
+    delta_xdot_.setZero();
   }
   rmrc_.step(x_id_, xdot_id_, yaw_rotation(sample_.heading), delta_x_, delta_xdot_);
   if (!rmrc_.fault() && rmrc_.joint_positions().allFinite()) last_setpoint_ = rmrc_.joint_positions();
@@ -218,7 +220,7 @@ void WalkingController::step(const SensorData& sensors, const WalkCommand& comma
 
   status_.com_desired = sample_.com;
   status_.zmp_desired = sample_.zmp;
-  status_.desired_wrench = params_.stabilizer ? stabilizer_.desired() : sample_.contact_wrench;
+  status_.desired_wrench = params_.stabilizer && use_sensors ? stabilizer_.desired() : sample_.contact_wrench;
   status_.state = name_of(fsm_.state());
 }
 

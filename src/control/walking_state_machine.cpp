@@ -33,9 +33,24 @@ StepDecision WalkingStateMachine::update(bool wants_to_walk, bool at_touchdown) 
       state_ = WalkingState::Standing;
       return StepDecision::Stand;
     case WalkingState::SafeStop:
+      if (!at_touchdown) return StepDecision::None;
+      if (stop_progress_ == WalkingState::Starting || stop_progress_ == WalkingState::Walking) {
+        stop_progress_ = WalkingState::Stopping;
+        return StepDecision::StopStep;
+      }
+      if (stop_progress_ == WalkingState::Stopping) {
+        stop_progress_ = WalkingState::Standing;
+        return StepDecision::Stand;
+      }
       return StepDecision::None;
   }
   return StepDecision::None;
+}
+
+void WalkingStateMachine::enter_safe_stop() {
+  if (state_ == WalkingState::SafeStop) return;
+  stop_progress_ = state_;
+  state_ = WalkingState::SafeStop;
 }
 
 }  // namespace biped

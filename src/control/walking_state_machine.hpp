@@ -2,7 +2,9 @@
 // The walking state machine (Fig. 3's FSM): coordinates the planning and control modules.
 //   standing ──(walk command)──► starting ──(first touchdown)──► walking
 //   walking ──(stop or zero command at a touchdown)──► stopping ──(feet side by side)──► standing
-//   any ──(fall or sensor fault)──► safe_stop (holds a safe pose; left only by a restart)
+//   any ──(sensor fault)──► safe_stop: the controller stops using its sensors; a step under way is
+//   finished, one more step puts the feet side by side, and the robot stands (the pattern and
+//   eq. (21) need no sensors). Left only by a restart.
 namespace biped {
 
 enum class WalkingState { Standing, Starting, Walking, Stopping, SafeStop };
@@ -25,10 +27,11 @@ class WalkingStateMachine {
   // Called every cycle: `wants_to_walk` = nonzero command without stop; `at_touchdown` = the
   // current plan's next touchdown has been reached.
   StepDecision update(bool wants_to_walk, bool at_touchdown);
-  void enter_safe_stop() { state_ = WalkingState::SafeStop; }
+  void enter_safe_stop();
 
  private:
   WalkingState state_ = WalkingState::Standing;
+  WalkingState stop_progress_ = WalkingState::Standing;  // in safe_stop: where the stop has got to
 };
 
 }  // namespace biped

@@ -99,5 +99,40 @@ TEST(Stabilizer, ClosedLoopWalkKeepsTheUpperBodySteadyWhereOpenLoopRocks) {
   EXPECT_GT(off.tilt_rms_x + off.tilt_rms_y, 3.0 * (on.tilt_rms_x + on.tilt_rms_y));
 }
 
+struct Robustness {
+  const char* scenario;
+  std::vector<std::string> overrides;
+};
+
+class StabilizerRobustness : public ::testing::TestWithParam<Robustness> {};
+
+// Shortened versions of the shipped robustness scenarios: the stabilizer walks through errors the
+// controller is not told about.
+TEST_P(StabilizerRobustness, WalksWithoutFalling) {
+  std::vector<std::string> overrides = GetParam().overrides;
+  overrides.push_back("duration=8");
+  const Scenario scenario = load_scenario(test::source_path(std::string("config/scenarios/") + GetParam().scenario + ".yaml"),
+                                          overrides);
+  const ScenarioResult r = run_scenario(scenario, make_run_config(scenario), "");
+  EXPECT_FALSE(r.run.fell) << r.run.fall_reason;
+  EXPECT_GT(r.summary["distance_m"].get<double>(), 1.5);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Scenarios, StabilizerRobustness,
+    ::testing::Values(Robustness{"lola-sensor-noise", {}}, Robustness{"lola-model-error-mass", {}},
+                      Robustness{"lola-model-error-mass", {"model_error.upper_body_mass_scale=0.9"}},
+                      Robustness{"lola-model-error-com", {}},
+                      Robustness{"lola-model-error-com", {"model_error.upper_body_com_offset=[0,0.02,0]"}}));
+
+// One NaN reading of a force/torque sensor while walking: safe stop, no NaN set-point, no fall.
+TEST(StabilizerRobustness, NanForceReadingGivesASafeStopWithoutAFall) {
+  const Scenario scenario = load_scenario(test::source_path("config/scenarios/lola-ft-nan.yaml"));
+  const ScenarioResult r = run_scenario(scenario, make_run_config(scenario), "");
+  EXPECT_FALSE(r.run.fell) << r.run.fall_reason;
+  EXPECT_EQ(r.summary["final_state"], "safe_stop");
+  EXPECT_EQ(r.summary["fault"], "left F/T sensor");
+}
+
 }  // namespace
 }  // namespace biped

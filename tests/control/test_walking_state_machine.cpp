@@ -22,13 +22,25 @@ TEST(WalkingStateMachine, StartWalkStopStand) {
   EXPECT_STREQ(name_of(fsm.state()), "standing");
 }
 
-TEST(WalkingStateMachine, SafeStopIsFinal) {
+TEST(WalkingStateMachine, SafeStopFinishesTheStepStopsAndStaysStopped) {
   WalkingStateMachine fsm;
   fsm.update(true, false);
+  fsm.update(true, true);  // walking
+  fsm.enter_safe_stop();
+  EXPECT_EQ(fsm.state(), WalkingState::SafeStop);
+  EXPECT_STREQ(name_of(fsm.state()), "safe_stop");
+  EXPECT_EQ(fsm.update(true, false), StepDecision::None);
+  EXPECT_EQ(fsm.update(true, true), StepDecision::StopStep) << "the walk command is ignored";
+  EXPECT_EQ(fsm.update(true, true), StepDecision::Stand);
+  EXPECT_EQ(fsm.update(true, true), StepDecision::None);
+  EXPECT_EQ(fsm.state(), WalkingState::SafeStop);
+}
+
+TEST(WalkingStateMachine, SafeStopWhileStandingKeepsStanding) {
+  WalkingStateMachine fsm;
   fsm.enter_safe_stop();
   EXPECT_EQ(fsm.update(true, true), StepDecision::None);
   EXPECT_EQ(fsm.state(), WalkingState::SafeStop);
-  EXPECT_STREQ(name_of(fsm.state()), "safe_stop");
 }
 
 }  // namespace
