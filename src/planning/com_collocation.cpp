@@ -21,8 +21,8 @@ void ComCollocation::set_horizon(double t0, double t_end) {
   h_ = (t_end - t0) / intervals_;
 }
 
-void ComCollocation::prepare(double body_height, double gravity, const Eigen::VectorXd& shape1,
-                             const Eigen::VectorXd& shape2) {
+void ComCollocation::prepare(const Eigen::VectorXd& body_height, const Eigen::VectorXd& body_vertical_acceleration,
+                             double gravity, const Eigen::VectorXd& shape1, const Eigen::VectorXd& shape2) {
   const int n = intervals_;
   const double h2 = h_ * h_;
   system_.setZero();
@@ -31,8 +31,8 @@ void ComCollocation::prepare(double body_height, double gravity, const Eigen::Ve
   system_.row(2).segment<3>(0) << 1.0 / h2, -2.0 / h2, 1.0 / h2;
   for (int k = 0; k < n; ++k) {
     auto row = system_.row(3 + k);
-    row.segment<3>(k) << body_height / h2 - gravity / 6.0, -2.0 * body_height / h2 - 4.0 * gravity / 6.0,
-        body_height / h2 - gravity / 6.0;
+    const double z = body_height[k], weight = body_vertical_acceleration[k] + gravity;
+    row.segment<3>(k) << z / h2 - weight / 6.0, -2.0 * z / h2 - 4.0 * weight / 6.0, z / h2 - weight / 6.0;
     row(n + 3) = gravity * shape1[k];
     row(n + 4) = gravity * shape2[k];
   }

@@ -26,9 +26,10 @@ class ComCollocation {
   double knot_time(int k) const { return t0_ + k * h_; }
   void set_horizon(double t0, double t_end);
 
-  // Builds and factorizes the system for body height z_b and the ZMP shape functions sampled at the
-  // knots (entries 0..N−1 used). No allocation.
-  void prepare(double body_height, double gravity, const Eigen::VectorXd& shape1, const Eigen::VectorXd& shape2);
+  // Builds and factorizes the system for the body's prescribed height z_b and vertical acceleration
+  // z̈_b and the ZMP shape functions, all sampled at the knots (entries 0..N−1 used). No allocation.
+  void prepare(const Eigen::VectorXd& body_height, const Eigen::VectorXd& body_vertical_acceleration, double gravity,
+               const Eigen::VectorXd& shape1, const Eigen::VectorXd& shape2);
 
   // Solves one axis: `rhs[k]` = −g p(t_k) − leg terms, k = 0..N−1; x0, v0, a0: state at t0;
   // x_end: the body's final rest position. Stores the spline control points (size N+3) and the two ZMP shape amplitudes.

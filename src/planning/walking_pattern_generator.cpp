@@ -38,7 +38,26 @@ WalkingPatternGenerator::WalkingPatternGenerator(const PatternGeneratorParams& p
       coeff_x_(Eigen::VectorXd::Zero(params.collocation_intervals + 3)),
       coeff_y_(Eigen::VectorXd::Zero(params.collocation_intervals + 3)),
       shape1_(Eigen::VectorXd::Zero(params.collocation_intervals + 1)),
-      shape2_(Eigen::VectorXd::Zero(params.collocation_intervals + 1)) {}
+      shape2_(Eigen::VectorXd::Zero(params.collocation_intervals + 1)),
+      knot_height_(Eigen::VectorXd::Zero(params.collocation_intervals + 1)),
+      knot_vertical_acc_(Eigen::VectorXd::Zero(params.collocation_intervals + 1)) {}
+
+void WalkingPatternGenerator::body_vertical(double t, double& z, double& velocity, double& acceleration) const {
+  z = body_height_;
+  velocity = acceleration = 0.0;
+  for (int k = 0; k < num_steps_; ++k) {
+    const double start = liftoff(k), end = steps_[k].touchdown;
+    if (t <= start || t >= end) continue;
+    const double duration = end - start;
+    double l, dl, ddl;
+    lift((t - start) / duration, l, dl, ddl);
+    const double a = params_.com_height_variation;
+    z += a * l;
+    velocity = a * dl / duration;
+    acceleration = a * ddl / (duration * duration);
+    return;
+  }
+}
 
 // b₁ fades from 1 to 0 over the first double support (takes up the ZMP at the replanning instant);
 // b₂ is a bump over the same double support (steers the divergent mode of the CoM while both feet
@@ -82,7 +101,8 @@ void WalkingPatternGenerator::replan(double t0, const std::array<Footstep, 2>& f
   shape2_duration_ = num_steps_ > 0 ? shape1_duration_ : 0.5 * (t_end - t0);
 
   // Dividing the model equation by m_b: z_b ẍ_b − g x_b + W p̃ = −(1/m_b) Σ_i m_i [z_i ẍ_i − x_i (z̈_i + g)]
-  // with W = g + (1/m_b) Σ_i m_i (z̈_i + g), p̃ = p + δ₁ b₁ + δ₂ b₂.
+  // with W = z̈_b + g + (1/m_b) Σ_i m_i (z̈_i + g), p̃ = p + δ₁ b₁ + δ₂ b₂, and the body's prescribed
+  // height z_b(t) on the left: z_b ẍ_b − (z̈_b + g) x_b.
   const double g = params_.gravity;
   for (int k = 0; k < collocation_.knots(); ++k) {
     const double t = collocation_.knot_time(k);
@@ -90,7 +110,11 @@ void WalkingPatternGenerator::replan(double t0, const std::array<Footstep, 2>& f
     double share;
     int phase;
     reference_zmp(t, p, share, phase);
-    double weight = g;
+    double z_b, zd_b, zdd_b;
+    body_vertical(t, z_b, zd_b, zdd_b);
+    knot_height_[k] = z_b;
+    knot_vertical_acc_[k] = zdd_b;
+    double weight = zdd_b + g;
     Eigen::Vector2d legs = Eigen::Vector2d::Zero();
     for (Side side : kSides) {
       FootReference foot;
@@ -107,7 +131,7 @@ void WalkingPatternGenerator::replan(double t0, const std::array<Footstep, 2>& f
     shape1_[k] = b1 * weight / g;
     shape2_[k] = b2 * weight / g;
   }
-  collocation_.prepare(body_height_, g, shape1_, shape2_);
+  collocation_.prepare(knot_height_, knot_vertical_acc_, g, shape1_, shape2_);
   // At rest at the end, the body mass sits where the model's ZMP is the final reference ZMP:
   // x_b = p + (1/m_b) Σ_i m_i (p − x_i) with the legs standing still.
   Eigen::Vector2d p_end;
@@ -226,9 +250,11 @@ void WalkingPatternGenerator::sample(double t, PatternSample& out) const {
 
   // Robot CoM of the simplified model.
   const double m_b = params_.body_mass, m_l = params_.leg_mass, m_total = m_b + 2.0 * m_l;
-  const Eigen::Vector3d body(out.body_x.position, out.body_y.position, body_height_);
-  const Eigen::Vector3d body_vel(out.body_x.velocity, out.body_y.velocity, 0.0);
-  const Eigen::Vector3d body_acc(out.body_x.acceleration, out.body_y.acceleration, 0.0);
+  double z_b, zd_b, zdd_b;
+  body_vertical(t, z_b, zd_b, zdd_b);
+  const Eigen::Vector3d body(out.body_x.position, out.body_y.position, z_b);
+  const Eigen::Vector3d body_vel(out.body_x.velocity, out.body_y.velocity, zd_b);
+  const Eigen::Vector3d body_acc(out.body_x.acceleration, out.body_y.acceleration, zdd_b);
   const Eigen::Vector3d leg_offset(0.0, 0.0, params_.leg_com_height);
   out.com = m_b * body;
   out.com_velocity = m_b * body_vel;

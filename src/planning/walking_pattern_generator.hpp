@@ -27,6 +27,7 @@ struct PatternGeneratorParams {
   double arm_swing_gain = 0.15;    // arm CoM forward offset per metre of foot separation
   double final_rest_time = 0.5;    // [s] the horizon ends this long after the last double support
   double settle_time = 1.0;        // [s] coming to rest without steps: the ZMP moves to mid-feet
+  double com_height_variation = 0.01;  // [m] the body rises by this at mid single support
   int collocation_intervals = 48;
 };
 
@@ -81,8 +82,11 @@ class WalkingPatternGenerator {
   // When the first planned step touches down (end of the first step), or the horizon end without steps.
   double next_touchdown() const { return num_steps_ > 0 ? steps_[0].touchdown : horizon_end(); }
   const PatternGeneratorParams& params() const { return params_; }
-  // Height of the upper-body mass point in the current plan [m].
+  // Height of the upper-body mass point at rest in the current plan [m].
   double body_height() const { return body_height_; }
+  // The body's prescribed vertical motion: it rises by com_height_variation during each single
+  // support (a C² bump, zero in double support).
+  void body_vertical(double t, double& z, double& velocity, double& acceleration) const;
 
  private:
   void reference_zmp(double t, Eigen::Vector2d& zmp, double& share_of_new, int& phase_step) const;
@@ -105,7 +109,7 @@ class WalkingPatternGenerator {
   void zmp_shapes(double t, double& b1, double& b2) const;
   double shape1_duration_ = 0.1, shape2_duration_ = 0.8;
   Eigen::Vector2d amplitude1_ = Eigen::Vector2d::Zero(), amplitude2_ = Eigen::Vector2d::Zero();
-  Eigen::VectorXd rhs_x_, rhs_y_, coeff_x_, coeff_y_, shape1_, shape2_;
+  Eigen::VectorXd rhs_x_, rhs_y_, coeff_x_, coeff_y_, shape1_, shape2_, knot_height_, knot_vertical_acc_;
 };
 
 }  // namespace biped

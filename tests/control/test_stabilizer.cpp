@@ -80,23 +80,23 @@ struct WalkOutcome {
 
 WalkOutcome walk(bool stabilizer) {
   const Scenario scenario = load_scenario(test::source_path("config/scenarios/lola-walk-open-loop.yaml"),
-                                          {"duration=9", "commands.1.vx=0.5", "commands.2.t=8",
+                                          {"duration=10",
                                            std::string("controller.stabilizer=") + (stabilizer ? "true" : "false")});
   const ScenarioResult r = run_scenario(scenario, make_run_config(scenario), "");
   const auto& tilt = r.summary["upper_body_tilt_deg"];
   return {r.run.fell, tilt["rms_x"], tilt["rms_y"], tilt["max"]};
 }
 
-// The same walk, stabilizer on against off: on, the upper body stays within about a degree; off,
-// its lateral rocking grows (measured: max tilt 24°, sometimes a fall).
+// The same walk (LOLA, 0.3 m/s), stabilizer on against off: on, the upper body stays within about a
+// degree; off, its lateral rocking grows until the robot falls (measured: after 7-9 steps).
 TEST(Stabilizer, ClosedLoopWalkKeepsTheUpperBodySteadyWhereOpenLoopRocks) {
   const WalkOutcome off = walk(false);
   const WalkOutcome on = walk(true);
   EXPECT_FALSE(on.fell);
   EXPECT_LT(on.tilt_rms_x, 1.0);
   EXPECT_LT(on.tilt_rms_y, 1.0);
-  EXPECT_GT(off.tilt_max, 5.0 * on.tilt_max);
-  EXPECT_GT(off.tilt_rms_x + off.tilt_rms_y, 3.0 * (on.tilt_rms_x + on.tilt_rms_y));
+  EXPECT_LT(on.tilt_max, 2.0);
+  EXPECT_TRUE(off.fell || off.tilt_max > 5.0 * on.tilt_max) << "open loop: max tilt " << off.tilt_max;
 }
 
 struct Robustness {

@@ -94,10 +94,11 @@ TEST(WalkingPatternGenerator, ModelZmpStaysInsideTheSupportPolygon) {
     for (std::size_t i = 1; i + 1 < walk.samples.size(); ++i) {
       const PatternSample& s = walk.samples[i];
       // p = Σ m (x (z̈+g) − z ẍ) / Σ m (z̈+g) over the body mass and the two leg masses.
-      const double zb = walk.generator.body_height();
-      double fz = p.body_mass * p.gravity;
-      Eigen::Vector2d moment(p.body_mass * (s.body_x.position * p.gravity - zb * s.body_x.acceleration),
-                             p.body_mass * (s.body_y.position * p.gravity - zb * s.body_y.acceleration));
+      double zb, zdb, zddb;
+      walk.generator.body_vertical(walk.times[i], zb, zdb, zddb);
+      double fz = p.body_mass * (zddb + p.gravity);
+      Eigen::Vector2d moment(p.body_mass * (s.body_x.position * (zddb + p.gravity) - zb * s.body_x.acceleration),
+                             p.body_mass * (s.body_y.position * (zddb + p.gravity) - zb * s.body_y.acceleration));
       for (const FootReference& f : s.feet) {
         const double z = f.position.z() + p.leg_com_height, zdd = f.acceleration.z() + p.gravity;
         fz += p.leg_mass * zdd;
@@ -158,6 +159,24 @@ TEST(WalkingPatternGenerator, IdealContactWrenchesMatchTheModel) {
     EXPECT_NEAR(moment_about_zmp.x(), 0.0, 1e-6);
     EXPECT_NEAR(moment_about_zmp.y(), 0.0, 1e-6);
   }
+}
+
+// The body rises and falls smoothly within each single support and is back at its height in double support.
+TEST(WalkingPatternGenerator, PrescribedVerticalBodyMotion) {
+  Walk walk;
+  walk.start();
+  walk.walk({0.5, 0.0, 0.0}, 4, 0.5);
+  const double base = walk.generator.body_height();
+  double highest = 0.0;
+  for (std::size_t i = 0; i < walk.samples.size(); ++i) {
+    double z, zd, zdd;
+    walk.generator.body_vertical(walk.times[i], z, zd, zdd);
+    if (walk.samples[i].double_support) {
+      EXPECT_NEAR(z, base, 1e-12);
+    }
+    highest = std::max(highest, z - base);
+  }
+  EXPECT_NEAR(highest, lola_like().com_height_variation, 1e-4);
 }
 
 TEST(WalkingPatternGenerator, StopBringsTheCoMToRestBetweenTheFeet) {
