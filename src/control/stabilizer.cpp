@@ -41,11 +41,15 @@ void Stabilizer::reset() {
 void Stabilizer::contact_force_modification(const std::array<Wrench, 2>& ideal,
                                             const std::array<bool, 2>& planned_contact,
                                             const std::array<double, 2>& load_share, double tilt_sagittal,
-                                            double tilt_lateral, double rate_sagittal, double rate_lateral) {
-  // Δx_IN = planned − measured; the plan keeps the upper body upright. Leaning forward moves the
-  // desired CoP forward (T_y = −x_CoP F_z), leaning left moves it left (T_x = y_CoP F_z).
-  const double correction_y = params_.tilt_gain * (-tilt_sagittal) + params_.tilt_rate_gain * (-rate_sagittal);
-  const double correction_x = -(params_.tilt_gain * (-tilt_lateral) + params_.tilt_rate_gain * (-rate_lateral));
+                                            double tilt_lateral, double rate_sagittal, double rate_lateral,
+                                            const Eigen::Vector2d& com_error, const Eigen::Vector2d& com_rate_error) {
+  // Δx_IN = planned − measured; the plan keeps the upper body upright. Leaning forward, or the CoM
+  // ahead of the plan, moves the desired CoP forward (T_y = −x_CoP F_z); leaning left, or the CoM
+  // left of the plan, moves it left (T_x = y_CoP F_z).
+  const double correction_y = params_.tilt_gain * (-tilt_sagittal) + params_.tilt_rate_gain * (-rate_sagittal) +
+                              params_.com_gain * com_error.x() + params_.com_rate_gain * com_rate_error.x();
+  const double correction_x = -(params_.tilt_gain * (-tilt_lateral) + params_.tilt_rate_gain * (-rate_lateral) +
+                                params_.com_gain * com_error.y() + params_.com_rate_gain * com_rate_error.y());
   for (Side side : kSides) {
     const int k = index_of(side);
     Wrench& d = desired_[k];
@@ -84,11 +88,12 @@ void Stabilizer::hybrid_position_force_control(int k, double dt, const Wrench& m
 
 void Stabilizer::step(double dt, const std::array<Wrench, 2>& ideal, const std::array<bool, 2>& planned_contact,
                       const std::array<double, 2>& load_share, const std::array<Wrench, 2>& measured,
-                      const Eigen::Quaterniond& imu_orientation, const Eigen::Vector3d& imu_rate) {
+                      const Eigen::Quaterniond& imu_orientation, const Eigen::Vector3d& imu_rate,
+                      const Eigen::Vector2d& com_error, const Eigen::Vector2d& com_rate_error) {
   const math::TiltAngles tilt = math::tilt_against_gravity(imu_orientation.toRotationMatrix());
   // Small-angle rates of the two tilt angles from the body-frame angular rate.
   contact_force_modification(ideal, planned_contact, load_share, tilt.sagittal, tilt.lateral, imu_rate.y(),
-                             -imu_rate.x());
+                             -imu_rate.x(), com_error, com_rate_error);
   if (first_) previous_desired_ = desired_;
   first_ = false;
   const double filter = dt / (params_.contact_filter_time + dt);

@@ -1,7 +1,8 @@
 #pragma once
 // The stabilizing control of the paper's Section IV:
-//   contact force modification, eq. (10): λ_d = sat(λ_id + K_P Δx_IN + K_D Δẋ_IN), here with the
-//     upper body's inclination φ_UB (from the IMU) as x_IN;
+//   contact force modification, eq. (10): λ_d = sat(λ_id + K_P Δx_IN + K_D Δẋ_IN), with
+//     x_IN = (φ_UB, r_CoM): the upper body's inclination (IMU) and the horizontal CoM position
+//     relative to the stance foot (encoders and IMU, control/state_estimation);
 //   hybrid position/force control, eqs. (11)–(20): per foot, the normal force and the two contact-
 //     plane torques are tracked by modifying the foot's height and tilt, through the explicit
 //     point-contact model of eq. (11) (the four sole corners, stiffness C each quarter of the foot's).
@@ -20,6 +21,8 @@ namespace biped {
 struct StabilizerParams {
   double tilt_gain = 600.0;          // K_P [N·m/rad]: foot torque per radian of upper-body tilt error
   double tilt_rate_gain = 60.0;      // K_D [N·m·s/rad]
+  double com_gain = 300.0;           // K_P [N·m/m]: foot torque per metre of CoM error
+  double com_rate_gain = 30.0;       // K_D [N·m·s/m]
   double force_gain = 20.0;          // K_λ [1/s]
   double feedforward_gain = 1.0;     // K_λ,ff
   double position_gain = 5.0;        // K_λx [1/s]: return of the modification without contact
@@ -45,10 +48,14 @@ class Stabilizer {
 
   // One cycle. `ideal`: λ_id of both feet (sensor frames); `planned_contact`: the pattern's contact
   // schedule; `load_share`: the pattern's split of the load; `measured`: the F/T readings;
-  // `imu_orientation`, `imu_rate`: the upper body's orientation and angular rate (IMU frame).
+  // `imu_orientation`, `imu_rate`: the upper body's orientation and angular rate (IMU frame);
+  // `com_error`, `com_rate_error`: planned − estimated horizontal CoM relative to the stance foot
+  // (heading frame: x forward, y left).
   void step(double dt, const std::array<Wrench, 2>& ideal, const std::array<bool, 2>& planned_contact,
             const std::array<double, 2>& load_share, const std::array<Wrench, 2>& measured,
-            const Eigen::Quaterniond& imu_orientation, const Eigen::Vector3d& imu_rate);
+            const Eigen::Quaterniond& imu_orientation, const Eigen::Vector3d& imu_rate,
+            const Eigen::Vector2d& com_error = Eigen::Vector2d::Zero(),
+            const Eigen::Vector2d& com_rate_error = Eigen::Vector2d::Zero());
 
   const std::array<Wrench, 2>& desired() const { return desired_; }
   const std::array<FootModification, 2>& modification() const { return modification_; }
@@ -58,7 +65,8 @@ class Stabilizer {
   // eq. (10) with its saturation.
   void contact_force_modification(const std::array<Wrench, 2>& ideal, const std::array<bool, 2>& planned_contact,
                                   const std::array<double, 2>& load_share, double tilt_sagittal,
-                                  double tilt_lateral, double rate_sagittal, double rate_lateral);
+                                  double tilt_lateral, double rate_sagittal, double rate_lateral,
+                                  const Eigen::Vector2d& com_error, const Eigen::Vector2d& com_rate_error);
   // eq. (20) for one foot.
   void hybrid_position_force_control(int foot, double dt, const Wrench& measured);
 

@@ -31,6 +31,7 @@ WalkingController::WalkingController(const RobotModel& model, const WalkingContr
       rmrc_(model, space_, params.rmrc),
       pattern_(pattern_params(model, params)),
       stabilizer_(model, params.stabilization),
+      com_estimator_(model),
       x_id_(Eigen::VectorXd::Zero(space_.dim())),
       xdot_id_(Eigen::VectorXd::Zero(space_.dim())),
       delta_x_(Eigen::VectorXd::Zero(space_.dim())),
@@ -43,6 +44,7 @@ void WalkingController::reset(const SensorData& first) {
   fsm_ = WalkingStateMachine{};
   num_planned_ = 0;
   stabilizer_.reset();
+  has_estimate_ = false;
   delta_x_.setZero();
   delta_xdot_.setZero();
 
@@ -179,6 +181,28 @@ void WalkingController::stabilizer_modification(const PatternSample& s) {
   }
 }
 
+void WalkingController::com_error(const SensorData& sensors, const PatternSample& s, Eigen::Vector2d& error,
+                                  Eigen::Vector2d& rate) {
+  const Side stance = s.stance;
+  const Eigen::Vector2d estimate = com_estimator_.com_from_foot(sensors.joint_position, sensors.imu_orientation, stance).head<2>();
+  // The rate is differentiated and filtered (T = 10 ms); a change of stance foot restarts it.
+  const double dt = params_.rmrc.dt, filter = dt / (0.01 + dt);
+  if (!has_estimate_ || stance != estimate_stance_) {
+    com_rate_estimate_.setZero();
+  } else {
+    com_rate_estimate_ += filter * ((estimate - com_estimate_) / dt - com_rate_estimate_);
+  }
+  com_estimate_ = estimate;
+  estimate_stance_ = stance;
+  has_estimate_ = true;
+  const Eigen::Matrix2d to_heading = yaw_rotation(-s.heading).topLeftCorner<2, 2>();
+  const FootReference& foot = s.feet[index_of(stance)];
+  const Eigen::Vector2d planned = to_heading * (s.com - foot.position).head<2>();
+  const Eigen::Vector2d planned_rate = to_heading * (s.com_velocity - foot.velocity).head<2>();
+  error = planned - com_estimate_;
+  rate = planned_rate - com_rate_estimate_;
+}
+
 void WalkingController::step(const SensorData& sensors, const WalkCommand& command, JointCommand& out) {
   if (fsm_.state() != WalkingState::SafeStop) {
     if (const char* fault = check_sensors(model_, params_.sensor_limits, sensors)) {
@@ -205,8 +229,11 @@ void WalkingController::step(const SensorData& sensors, const WalkCommand& comma
   pattern_.sample(t, sample_);
   task_reference(sample_);
   if (params_.stabilizer && use_sensors) {
+    Eigen::Vector2d com_err, com_rate_err;
+    com_error(sensors, sample_, com_err, com_rate_err);
     stabilizer_.step(params_.rmrc.dt, sample_.contact_wrench, {sample_.feet[0].in_contact, sample_.feet[1].in_contact},
-                     sample_.load_share, sensors.foot_wrench, sensors.imu_orientation, sensors.imu_angular_rate);
+                     sample_.load_share, sensors.foot_wrench, sensors.imu_orientation, sensors.imu_angular_rate,
+                     com_err, com_rate_err);
     stabilizer_modification(sample_);
   } else if (!use_sensors) {
     // Without force feedback the feet's modifications return to the plan.

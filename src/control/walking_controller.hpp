@@ -11,6 +11,7 @@
 #include "control/resolved_motion_rate_control.hpp"
 #include "control/sensor_check.hpp"
 #include "control/stabilizer.hpp"
+#include "control/state_estimation.hpp"
 #include "control/walking_state_machine.hpp"
 #include "model/task_space.hpp"
 #include "planning/step_sequence_planner.hpp"
@@ -49,6 +50,8 @@ class WalkingController final : public Controller {
   void task_reference(const PatternSample& s);
   // Δx_λ, Δẋ_λ of both feet in the task rows (foot height, foot tilt against the upper body).
   void stabilizer_modification(const PatternSample& s);
+  // Δr_CoM and its rate for eq. (10): planned − estimated CoM relative to the stance foot.
+  void com_error(const SensorData& sensors, const PatternSample& s, Eigen::Vector2d& error, Eigen::Vector2d& rate);
 
   const RobotModel& model_;
   WalkingControllerParams params_;
@@ -56,6 +59,11 @@ class WalkingController final : public Controller {
   ResolvedMotionRateControl rmrc_;
   WalkingPatternGenerator pattern_;
   Stabilizer stabilizer_;
+  CoMEstimator com_estimator_;
+  Eigen::Vector2d com_estimate_ = Eigen::Vector2d::Zero();       // CoM − stance foot, heading frame
+  Eigen::Vector2d com_rate_estimate_ = Eigen::Vector2d::Zero();  // its filtered rate
+  Side estimate_stance_ = Side::Left;
+  bool has_estimate_ = false;
   WalkingStateMachine fsm_;
   ControllerStatus status_;
 

@@ -123,7 +123,9 @@ INSTANTIATE_TEST_SUITE_P(
     ::testing::Values(Robustness{"lola-sensor-noise", {}}, Robustness{"lola-model-error-mass", {}},
                       Robustness{"lola-model-error-mass", {"model_error.upper_body_mass_scale=0.9"}},
                       Robustness{"lola-model-error-com", {}},
-                      Robustness{"lola-model-error-com", {"model_error.upper_body_com_offset=[0,0.02,0]"}}));
+                      Robustness{"lola-model-error-com", {"model_error.upper_body_com_offset=[0,0.02,0]"}},
+                      Robustness{"lola-model-error", {}},
+                      Robustness{"lola-model-error", {"model_error.upper_body_mass_scale=0.9"}}));
 
 // One NaN reading of a force/torque sensor while walking: safe stop, no NaN set-point, no fall.
 TEST(StabilizerRobustness, NanForceReadingGivesASafeStopWithoutAFall) {
