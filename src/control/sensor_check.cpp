@@ -1,5 +1,6 @@
 #include "control/sensor_check.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace biped {
@@ -33,6 +34,21 @@ const char* check_sensors(const RobotModel& model, const SensorLimits& limits, c
     }
   }
   return nullptr;
+}
+
+Eigen::VectorXd initial_joint_pose(const RobotModel& model, const SensorLimits& limits, const SensorData& first) {
+  Eigen::VectorXd q = check_sensors(model, limits, first) == nullptr ? first.joint_position : model.stand_pose();
+  for (int i = 0; i < model.num_joints(); ++i) {
+    q[i] = std::clamp(q[i], model.joints()[i].soft_lower, model.joints()[i].soft_upper);
+  }
+  return q;
+}
+
+Eigen::VectorXd initial_configuration(const RobotModel& model, const SensorLimits& limits, const SensorData& first) {
+  Eigen::VectorXd qpos = model.stand_qpos();
+  const Eigen::VectorXd q = initial_joint_pose(model, limits, first);
+  for (int i = 0; i < model.num_joints(); ++i) qpos[model.joints()[i].qpos_adr] = q[i];
+  return qpos;
 }
 
 }  // namespace biped

@@ -15,4 +15,10 @@ struct SensorLimits {
 // Returns nullptr when the reading is plausible, else a static string naming the faulty signal.
 const char* check_sensors(const RobotModel& model, const SensorLimits& limits, const SensorData& s);
 
+// The joint angles a controller starts from: the encoder readings when the reading is plausible,
+// else the stand pose; clamped to the software limits.
+Eigen::VectorXd initial_joint_pose(const RobotModel& model, const SensorLimits& limits, const SensorData& first);
+// The same written into a full configuration (the stand keyframe's floating base).
+Eigen::VectorXd initial_configuration(const RobotModel& model, const SensorLimits& limits, const SensorData& first);
+
 }  // namespace biped

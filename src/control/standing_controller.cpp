@@ -27,12 +27,7 @@ void StandingController::reset(const SensorData& first) {
   status_.fault = false;
   status_.fault_reason = "";
   status_.state = "standing";
-  const bool plausible = check_sensors(model_, params_.sensor_limits, first) == nullptr;
-  start_pose_ = plausible ? first.joint_position : model_.stand_pose();
-  for (int i = 0; i < model_.num_joints(); ++i) {
-    const JointInfo& j = model_.joints()[i];
-    start_pose_[i] = std::clamp(start_pose_[i], j.soft_lower, j.soft_upper);
-  }
+  start_pose_ = initial_joint_pose(model_, params_.sensor_limits, first);
   last_setpoint_ = start_pose_;
 }
 

@@ -50,12 +50,7 @@ void WalkingController::reset(const SensorData& first) {
 
   // The controller's own frame: the stand keyframe's base with the measured joint angles, shifted
   // so the soles are at z = 0.
-  Eigen::VectorXd q = model_.stand_qpos();
-  const bool plausible = check_sensors(model_, params_.sensor_limits, first) == nullptr;
-  for (int i = 0; i < model_.num_joints(); ++i) {
-    const JointInfo& j = model_.joints()[i];
-    q[j.qpos_adr] = std::clamp(plausible ? first.joint_position[i] : model_.stand_pose()[i], j.soft_lower, j.soft_upper);
-  }
+  Eigen::VectorXd q = initial_configuration(model_, params_.sensor_limits, first);
   TaskSpaceData data(space_);
   evaluate(space_, q, Eigen::Matrix3d::Identity(), data);
   const double ankle_height = pattern_.params().ankle_height;

@@ -35,13 +35,8 @@ void WeightShiftController::reset(const SensorData& first) {
   start_time_ = first.time;
   status_ = ControllerStatus{};
   status_.state = "standing";
-  Eigen::VectorXd q = model_.stand_qpos();
-  const bool plausible = check_sensors(model_, params_.sensor_limits, first) == nullptr;
-  for (int i = 0; i < model_.num_joints(); ++i) {
-    const JointInfo& j = model_.joints()[i];
-    q[j.qpos_adr] = std::clamp(plausible ? first.joint_position[i] : model_.stand_pose()[i], j.soft_lower, j.soft_upper);
-    last_setpoint_[i] = q[j.qpos_adr];
-  }
+  const Eigen::VectorXd q = initial_configuration(model_, params_.sensor_limits, first);
+  last_setpoint_ = initial_joint_pose(model_, params_.sensor_limits, first);
   rmrc_.reset(q);
   TaskSpaceData data(space_);
   evaluate(space_, q, Eigen::Matrix3d::Identity(), data);
