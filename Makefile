@@ -24,6 +24,8 @@ demo: build
 
 bench: build
 	@$(BUILD_DIR)/bench/biped_benchmarks --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
+	@$(BUILD_DIR)/biped bench --robot lola
+	@$(BUILD_DIR)/biped bench --robot johnnie
 
 clean:
 	rm -rf $(BUILD_DIR)

@@ -1,6 +1,7 @@
 #include "control/walking_controller.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 
 #include <Eigen/Geometry>
@@ -198,6 +199,8 @@ void WalkingController::com_error(const SensorData& sensors, const PatternSample
   rate = planned_rate - com_rate_estimate_;
 }
 
+Eigen::Matrix3d WalkingController::heading_frame() const { return yaw_rotation(sample_.heading); }
+
 void WalkingController::step(const SensorData& sensors, const WalkCommand& command, JointCommand& out) {
   if (fsm_.state() != WalkingState::SafeStop) {
     if (const char* fault = check_sensors(model_, params_.sensor_limits, sensors)) {
@@ -223,6 +226,8 @@ void WalkingController::step(const SensorData& sensors, const WalkCommand& comma
 
   pattern_.sample(t, sample_);
   task_reference(sample_);
+  using Clock = std::chrono::steady_clock;
+  const auto stabilizer_start = Clock::now();
   if (params_.stabilizer && use_sensors) {
     Eigen::Vector2d com_err, com_rate_err;
     com_error(sensors, sample_, com_err, com_rate_err);
@@ -236,7 +241,10 @@ void WalkingController::step(const SensorData& sensors, const WalkCommand& comma
     delta_x_ *= decay;
     delta_xdot_.setZero();
   }
+  const auto rmrc_start = Clock::now();
   rmrc_.step(x_id_, xdot_id_, yaw_rotation(sample_.heading), delta_x_, delta_xdot_);
+  timing_.rmrc_us = std::chrono::duration<double, std::micro>(Clock::now() - rmrc_start).count();
+  timing_.stabilizer_us = std::chrono::duration<double, std::micro>(rmrc_start - stabilizer_start).count();
   if (!rmrc_.fault() && rmrc_.joint_positions().allFinite()) last_setpoint_ = rmrc_.joint_positions();
   out.position = last_setpoint_;
 

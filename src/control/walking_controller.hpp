@@ -32,6 +32,12 @@ struct WalkingControllerParams {
   SensorLimits sensor_limits;
 };
 
+// Where a cycle's time goes (wall clock), for benchmarks and logs.
+struct CycleTiming {
+  double stabilizer_us = 0.0;  // state estimation, eq. (10), eq. (20)
+  double rmrc_us = 0.0;        // eq. (21): kinematics, Jacobian, solve, integration
+};
+
 class WalkingController final : public Controller {
  public:
   WalkingController(const RobotModel& model, const WalkingControllerParams& params);
@@ -44,6 +50,13 @@ class WalkingController final : public Controller {
   const PatternSample& pattern() const { return sample_; }
   const ResolvedMotionRateControl& rmrc() const { return rmrc_; }
   const Stabilizer& stabilizer() const { return stabilizer_; }
+  const CycleTiming& timing() const { return timing_; }
+  // The inputs eq. (21) got in the last cycle (to replay them, e.g. in the SVD baseline).
+  const Eigen::VectorXd& task_reference() const { return x_id_; }
+  const Eigen::VectorXd& task_reference_rate() const { return xdot_id_; }
+  const Eigen::VectorXd& task_modification() const { return delta_x_; }
+  const Eigen::VectorXd& task_modification_rate() const { return delta_xdot_; }
+  Eigen::Matrix3d heading_frame() const;
 
  private:
   void replan(double t, StepDecision decision, const VelocityCommand& v);
@@ -66,6 +79,7 @@ class WalkingController final : public Controller {
   bool has_estimate_ = false;
   WalkingStateMachine fsm_;
   ControllerStatus status_;
+  CycleTiming timing_;
 
   double start_time_ = 0.0;
   std::array<Footstep, 2> feet_;              // current footholds (planner frame)

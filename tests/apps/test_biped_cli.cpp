@@ -160,4 +160,21 @@ TEST(BipedRun, ShippedScenariosRun) {
   }
 }
 
+TEST(BipedBench, ReportsTheCycleFiguresOfTheContract) {
+  const fs::path json = work_dir() / "bench.json";
+  const Outcome o = biped("bench --robot johnnie --duration 2 --json " + json.string());
+  ASSERT_EQ(o.status, 0) << o.err;
+  EXPECT_NE(o.out.find("speed-up over explicit SVD"), std::string::npos) << o.out;
+  const auto j = nlohmann::json::parse(slurp(json));
+  for (const char* key : {"cycle_us", "stabilizer_us", "rmrc_us", "svd_baseline_us"}) {
+    EXPECT_GT(j[key]["median"].get<double>(), 0.0) << key;
+    EXPECT_GE(j[key]["p99"].get<double>(), j[key]["median"].get<double>()) << key;
+  }
+  EXPECT_GT(j["speedup_vs_svd"].get<double>(), 1.0);
+  EXPECT_TRUE(j["allocation_counter_active"].get<bool>());
+  EXPECT_EQ(j["allocations_per_cycle"].get<double>(), 0.0);
+  EXPECT_GT(j["realtime_factor"].get<double>(), 0.0);
+  EXPECT_EQ(biped("bench --robot asimo").status, 2);
+}
+
 }  // namespace

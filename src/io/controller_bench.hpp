@@ -1,0 +1,23 @@
+#pragma once
+// `biped bench`: times the walking controller's cycle in the closed loop on a walking trajectory
+// (straight at 0.6 m/s, stabilizer on): the whole cycle, its stabilizer part, its eq. (21) part, and
+// the same eq. (21) inputs solved by the explicit-SVD implementation (pseudo-inverse and null-space
+// projector formed), in one run.
+#include <functional>
+#include <nlohmann/json.hpp>
+#include <string>
+
+namespace biped {
+
+struct ControllerBenchOptions {
+  std::string robot = "lola";
+  double duration = 10.0;  // [s] simulated
+  double speed = 0.6;      // [m/s]
+};
+
+// `allocations` returns the process's heap allocation count so far (the CLI installs a counter);
+// the bench reports the allocations during the controller's cycles. Throws InputError for an
+// unknown robot.
+nlohmann::json run_controller_bench(const ControllerBenchOptions& options, const std::function<long()>& allocations);
+
+}  // namespace biped
