@@ -9,6 +9,7 @@
 #include "apps/allocation_counter.hpp"
 #include "io/controller_bench.hpp"
 #include "io/output_files.hpp"
+#include "io/push_test.hpp"
 #include "io/robot_config.hpp"
 #include "io/step_tables.hpp"
 #include "io/scenario.hpp"
@@ -93,6 +94,16 @@ int bench_command(const std::string& robot, const std::string& json_path, double
   return 0;
 }
 
+int push_test_command(const std::string& scenario_path, const std::string& direction,
+                      const std::vector<std::string>& overrides) {
+  const biped::Scenario scenario = biped::load_scenario(scenario_path, overrides);
+  const biped::RunConfig config = biped::make_run_config(scenario);
+  biped::PushTestOptions options;
+  options.direction = direction;
+  std::printf("%s\n", biped::run_push_test(scenario, config, options).dump().c_str());
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -119,6 +130,13 @@ int main(int argc, char** argv) {
   bench->add_option("--json", bench_json, "Write the figures as JSON");
   bench->add_option("--duration", bench_duration, "Simulated seconds")->capture_default_str()->check(CLI::Range(1.0, 600.0));
 
+  std::string push_scenario, push_direction;
+  std::vector<std::string> push_overrides;
+  CLI::App* push = app.add_subcommand("push-test", "Largest 0.1 s push impulse survived, by bisection to 1 N·s");
+  push->add_option("scenario", push_scenario, "Scenario file (YAML)")->required();
+  push->add_option("--direction", push_direction, "forward | backward | left | right")->required();
+  push->add_option("--set", push_overrides, "Override a scenario key")->type_name("KEY=VALUE");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -130,6 +148,7 @@ int main(int argc, char** argv) {
     if (*run) return run_command(scenario_path, out_dir, overrides);
     if (*tables) return tables_command(robot, table_out);
     if (*bench) return bench_command(bench_robot, bench_json, bench_duration);
+    if (*push) return push_test_command(push_scenario, push_direction, push_overrides);
   } catch (const biped::InputError& e) {
     std::cerr << "error: " << e.what() << '\n';
     return kExitBadInput;

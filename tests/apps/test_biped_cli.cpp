@@ -177,4 +177,19 @@ TEST(BipedBench, ReportsTheCycleFiguresOfTheContract) {
   EXPECT_EQ(biped("bench --robot asimo").status, 2);
 }
 
+TEST(BipedPushTest, FindsTheLargestSurvivedImpulse) {
+  const std::string scenario = biped::test::source_path("config/scenarios/lola-walk.yaml");
+  const Outcome o = biped("push-test " + scenario + " --direction left --set duration=10");
+  ASSERT_EQ(o.status, 0) << o.err;
+  const auto j = nlohmann::json::parse(o.out);
+  EXPECT_EQ(j["direction"], "left");
+  EXPECT_FALSE(j["falls_without_push"].get<bool>());
+  EXPECT_GT(j["max_impulse_Ns"].get<double>(), 1.0);
+  EXPECT_LT(j["max_impulse_Ns"].get<double>(), 200.0);
+  EXPECT_GT(j["push_time_s"].get<double>(), 4.0);
+  const Outcome bad = biped("push-test " + scenario + " --direction up");
+  EXPECT_EQ(bad.status, 2);
+  EXPECT_EQ(lines(bad.err), 1) << bad.err;
+}
+
 }  // namespace
