@@ -44,6 +44,7 @@ struct ControllerStatus {
   Eigen::Vector3d com_desired = Eigen::Vector3d::Zero();  // planned CoM (controller frame)
   Eigen::Vector2d zmp_desired = Eigen::Vector2d::Zero();  // planned ZMP (controller frame)
   bool command_saturated = false;                         // the walk command was clamped
+  double contact_stiffness = 0.0;  // [N/m] C used by eq. (20): configured, or its on-line estimate (0: none)
   int steps_completed = 0;
 };
 

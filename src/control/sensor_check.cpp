@@ -36,6 +36,33 @@ const char* check_sensors(const RobotModel& model, const SensorLimits& limits, c
   return nullptr;
 }
 
+void FrozenSignalDetector::reset(const SensorData& first) {
+  last_wrench_ = first.foot_wrench;
+  last_rate_ = first.imu_angular_rate;
+  last_acceleration_ = first.imu_acceleration;
+  wrench_repeats_ = {0, 0};
+  imu_repeats_ = 0;
+}
+
+const char* FrozenSignalDetector::update(const SensorData& s, int frozen_cycles) {
+  for (Side side : kSides) {
+    const int k = index_of(side);
+    const Wrench& w = s.foot_wrench[k];
+    const bool same = w.force == last_wrench_[k].force && w.torque == last_wrench_[k].torque;
+    wrench_repeats_[k] = same ? wrench_repeats_[k] + 1 : 0;
+    last_wrench_[k] = w;
+  }
+  const bool imu_same = s.imu_angular_rate == last_rate_ && s.imu_acceleration == last_acceleration_;
+  imu_repeats_ = imu_same ? imu_repeats_ + 1 : 0;
+  last_rate_ = s.imu_angular_rate;
+  last_acceleration_ = s.imu_acceleration;
+  if (frozen_cycles <= 0) return nullptr;
+  if (wrench_repeats_[0] >= frozen_cycles) return "left F/T sensor frozen";
+  if (wrench_repeats_[1] >= frozen_cycles) return "right F/T sensor frozen";
+  if (imu_repeats_ >= frozen_cycles) return "imu frozen";
+  return nullptr;
+}
+
 Eigen::VectorXd initial_joint_pose(const RobotModel& model, const SensorLimits& limits, const SensorData& first) {
   Eigen::VectorXd q = check_sensors(model, limits, first) == nullptr ? first.joint_position : model.stand_pose();
   for (int i = 0; i < model.num_joints(); ++i) {

@@ -29,10 +29,17 @@ Stabilizer::Stabilizer(const RobotModel& model, const StabilizerParams& params) 
     stiffness_[index_of(side)] = K;
     compliance_[index_of(side)] = K.inverse();
   }
+  reset();
 }
 
 void Stabilizer::reset() {
   for (auto& m : modification_) m = FootModification{};
+  for (auto& i : force_error_integral_) i.setZero();
+  regression_xy_ = regression_xx_ = 0.0;
+  stiffness_scale_ = 1.0;
+  window_residual_ = {0.0, 0.0};
+  for (auto& o : window_offset_) o.setZero();
+  window_cycle_ = 0;
   filtered_force_ = {0.0, 0.0};
   alpha_ = {0.0, 0.0};
   first_ = true;
@@ -78,12 +85,47 @@ void Stabilizer::hybrid_position_force_control(int k, double dt, const Wrench& m
   const Eigen::Vector3d lambda_d = controlled(desired_[k]);
   const Eigen::Vector3d lambda_d_rate = (lambda_d - controlled(previous_desired_[k])) / dt;
   const Eigen::Vector3d error = lambda_d - controlled(measured);
-  mod.rate = -compliance_[k] * (a * (params_.feedforward_gain * lambda_d_rate + params_.force_gain * error)) -
-             (1.0 - a) * params_.position_gain * mod.offset;
+  Eigen::Vector3d& integral = force_error_integral_[k];
+  integral += dt * (a * error - (1.0 - a) * params_.position_gain * integral);
+  const Eigen::Vector3d force_law = params_.feedforward_gain * lambda_d_rate + params_.force_gain * error +
+                                    params_.force_integral_gain * integral;  // eq. (14) with K_λ,INT
+  mod.rate = -(compliance_[k] / stiffness_scale_) * (a * force_law) - (1.0 - a) * params_.position_gain * mod.offset;
   mod.offset += mod.rate * dt;
   mod.offset[0] = std::clamp(mod.offset[0], -params_.max_height, params_.max_height);
   mod.offset[1] = std::clamp(mod.offset[1], -params_.max_tilt, params_.max_tilt);
   mod.offset[2] = std::clamp(mod.offset[2], -params_.max_tilt, params_.max_tilt);
+}
+
+// Least squares with forgetting over the double support, where the ground shares the load between
+// the feet: raising one foot's commanded height by δ against the other moves the normal force
+// δF = −(C/2)(δ_this − δ_other) from it to the other (two contact springs under one body). The
+// nominal model's prediction of that difference is compared with the measured change of the force
+// error (the part of the force change the plan did not ask for); the ratio scales C. In single
+// support the foot's height does not change its load, so the estimate holds there.
+void Stabilizer::adapt_contact_stiffness(double dt, const std::array<Wrench, 2>& measured) {
+  // Changes over a window of cycles, so that the lag of the joint drives falls inside it.
+  if (++window_cycle_ < kAdaptationWindow) return;
+  window_cycle_ = 0;
+  std::array<double, 2> residual, predicted;
+  for (int k = 0; k < 2; ++k) {
+    residual[k] = measured[k].force.z() - desired_[k].force.z();
+    predicted[k] = (stiffness_[k] * (modification_[k].offset - window_offset_[k]))[0];
+    window_offset_[k] = modification_[k].offset;
+  }
+  const double measured_shift = (residual[0] - window_residual_[0]) - (residual[1] - window_residual_[1]);
+  const double predicted_shift = -(predicted[0] - predicted[1]);
+  window_residual_ = residual;
+  if (alpha_[0] < 1.0 || alpha_[1] < 1.0) return;
+  const double forget = 1.0 - kAdaptationWindow * dt / params_.adaptation_time;
+  regression_xy_ = forget * regression_xy_ + predicted_shift * measured_shift;
+  regression_xx_ = forget * regression_xx_ + predicted_shift * predicted_shift;
+  constexpr double kMinExcitation = 100.0;  // [N²]: about 10 N of predicted change within the memory
+  if (regression_xx_ < kMinExcitation) return;
+  stiffness_scale_ = std::clamp(regression_xy_ / regression_xx_, params_.adaptation_min_scale, params_.adaptation_max_scale);
+}
+
+double Stabilizer::contact_stiffness() const {
+  return params_.contact_stiffness * stiffness_scale_;
 }
 
 void Stabilizer::step(double dt, const std::array<Wrench, 2>& ideal, const std::array<bool, 2>& planned_contact,
@@ -104,6 +146,7 @@ void Stabilizer::step(double dt, const std::array<Wrench, 2>& ideal, const std::
     alpha_[k] = planned_contact[k] ? contact : 0.0;
     hybrid_position_force_control(k, dt, measured[k]);
   }
+  if (params_.stiffness_adaptation) adapt_contact_stiffness(dt, measured);
   previous_desired_ = desired_;
 }
 

@@ -33,6 +33,15 @@ struct StabilizerParams {
   double contact_force_high = 150.0; // ... and is complete above this
   double max_tilt = 0.15;            // [rad] bound of the foot tilt modification
   double max_height = 0.02;          // [m] bound of the foot height modification
+  // Extension of eq. (14): integral action K_λ,INT ∫Δλ dt (0: off). The integral runs only with
+  // contact (weighted by α_λ) and decays with K_λx without it, so it cannot wind up in swing.
+  double force_integral_gain = 0.0;  // K_λ,INT [1/s²]
+  // Extension: on-line adaptation of the contact stiffness C of eq. (11) from the measured normal
+  // forces' response to the commanded foot heights in double support (least squares with forgetting).
+  bool stiffness_adaptation = false;
+  double adaptation_time = 0.5;        // [s] memory of the estimator (forgetting factor 1 − dt/T)
+  double adaptation_min_scale = 0.25;  // the estimate stays within these multiples of C
+  double adaptation_max_scale = 4.0;
 };
 
 // Per-foot modification of the position-controlled foot coordinates (foot frame).
@@ -60,6 +69,8 @@ class Stabilizer {
   const std::array<Wrench, 2>& desired() const { return desired_; }
   const std::array<FootModification, 2>& modification() const { return modification_; }
   const std::array<double, 2>& force_control_share() const { return alpha_; }
+  // The contact stiffness in use: C, or its on-line estimate [N/m].
+  double contact_stiffness() const;
 
  private:
   // eq. (10) with its saturation.
@@ -69,6 +80,8 @@ class Stabilizer {
                                   const Eigen::Vector2d& com_error, const Eigen::Vector2d& com_rate_error);
   // eq. (20) for one foot.
   void hybrid_position_force_control(int foot, double dt, const Wrench& measured);
+  // The contact-stiffness extension: updates the estimate from this cycle's readings.
+  void adapt_contact_stiffness(double dt, const std::array<Wrench, 2>& measured);
 
   const RobotModel& model_;
   StabilizerParams params_;
@@ -76,6 +89,14 @@ class Stabilizer {
   std::array<Eigen::Matrix3d, 2> compliance_; // K⁻¹
   std::array<Wrench, 2> desired_, previous_desired_;
   std::array<FootModification, 2> modification_;
+  std::array<Eigen::Vector3d, 2> force_error_integral_;  // ∫(λ_d − λ) dt of the controlled rows
+  // Least-squares sums of the stiffness estimate and the estimate as a multiple of C.
+  double regression_xy_ = 0.0, regression_xx_ = 0.0;
+  double stiffness_scale_ = 1.0;
+  static constexpr int kAdaptationWindow = 20;            // cycles per regression sample
+  int window_cycle_ = 0;
+  std::array<double, 2> window_residual_ = {0.0, 0.0};    // F_z − F_z,d at the window's start
+  std::array<Eigen::Vector3d, 2> window_offset_;          // Δx_λ at the window's start
   std::array<double, 2> filtered_force_ = {0.0, 0.0};
   std::array<double, 2> alpha_ = {0.0, 0.0};
   bool first_ = true;

@@ -45,6 +45,7 @@ void WalkingController::reset(const SensorData& first) {
   fsm_ = WalkingStateMachine{};
   num_planned_ = 0;
   stabilizer_.reset();
+  frozen_.reset(first);
   has_estimate_ = false;
   delta_x_.setZero();
   delta_xdot_.setZero();
@@ -203,7 +204,9 @@ Eigen::Matrix3d WalkingController::heading_frame() const { return yaw_rotation(s
 
 void WalkingController::step(const SensorData& sensors, const WalkCommand& command, JointCommand& out) {
   if (fsm_.state() != WalkingState::SafeStop) {
-    if (const char* fault = check_sensors(model_, params_.sensor_limits, sensors)) {
+    const char* fault = check_sensors(model_, params_.sensor_limits, sensors);
+    if (!fault) fault = frozen_.update(sensors, params_.sensor_limits.frozen_cycles);
+    if (fault) {
       fsm_.enter_safe_stop();
       status_.fault = true;
       status_.fault_reason = fault;
@@ -251,6 +254,7 @@ void WalkingController::step(const SensorData& sensors, const WalkCommand& comma
   status_.com_desired = sample_.com;
   status_.zmp_desired = sample_.zmp;
   status_.desired_wrench = params_.stabilizer && use_sensors ? stabilizer_.desired() : sample_.contact_wrench;
+  status_.contact_stiffness = params_.stabilizer ? stabilizer_.contact_stiffness() : 0.0;
   status_.state = name_of(fsm_.state());
 }
 

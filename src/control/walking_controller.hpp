@@ -73,6 +73,7 @@ class WalkingController final : public Controller {
   WalkingPatternGenerator pattern_;
   Stabilizer stabilizer_;
   CoMEstimator com_estimator_;
+  FrozenSignalDetector frozen_;
   Eigen::Vector2d com_estimate_ = Eigen::Vector2d::Zero();       // CoM − stance foot, heading frame
   Eigen::Vector2d com_rate_estimate_ = Eigen::Vector2d::Zero();  // its filtered rate
   Side estimate_stance_ = Side::Left;

@@ -46,11 +46,62 @@ void read_simulation(const YamlReader& r, const YAML::Node& sim, SimulationParam
   }
 }
 
+void read_stabilization(const YamlReader& r, const YAML::Node& n, StabilizerParams& p) {
+  const std::string where = "controller.stabilization";
+  r.expect_keys(n, where, {"tilt_gain", "tilt_rate_gain", "com_gain", "com_rate_gain", "force_gain", "feedforward_gain",
+                           "position_gain", "contact_stiffness", "cop_margin", "contact_filter_time",
+                           "contact_force_low", "contact_force_high", "max_tilt", "max_height",
+                           "force_integral_gain", "stiffness_adaptation", "adaptation_time",
+                           "adaptation_min_scale", "adaptation_max_scale"});
+  if (!n) return;
+  p.tilt_gain = r.non_negative_or(n, where, "tilt_gain", p.tilt_gain);
+  p.tilt_rate_gain = r.non_negative_or(n, where, "tilt_rate_gain", p.tilt_rate_gain);
+  p.com_gain = r.non_negative_or(n, where, "com_gain", p.com_gain);
+  p.com_rate_gain = r.non_negative_or(n, where, "com_rate_gain", p.com_rate_gain);
+  p.force_gain = r.non_negative_or(n, where, "force_gain", p.force_gain);
+  p.feedforward_gain = r.non_negative_or(n, where, "feedforward_gain", p.feedforward_gain);
+  p.position_gain = r.positive_or(n, where, "position_gain", p.position_gain);
+  p.contact_stiffness = r.positive_or(n, where, "contact_stiffness", p.contact_stiffness);
+  p.cop_margin = r.non_negative_or(n, where, "cop_margin", p.cop_margin);
+  p.contact_filter_time = r.positive_or(n, where, "contact_filter_time", p.contact_filter_time);
+  p.contact_force_low = r.non_negative_or(n, where, "contact_force_low", p.contact_force_low);
+  p.contact_force_high = r.positive_or(n, where, "contact_force_high", p.contact_force_high);
+  if (p.contact_force_high <= p.contact_force_low) {
+    r.fail(n["contact_force_high"] ? n["contact_force_high"] : n, where + ".contact_force_high",
+           "must be above contact_force_low");
+  }
+  p.max_tilt = r.positive_or(n, where, "max_tilt", p.max_tilt);
+  p.max_height = r.positive_or(n, where, "max_height", p.max_height);
+  p.force_integral_gain = r.non_negative_or(n, where, "force_integral_gain", p.force_integral_gain);
+  p.stiffness_adaptation = r.boolean_or(n, where, "stiffness_adaptation", p.stiffness_adaptation);
+  p.adaptation_time = r.positive_or(n, where, "adaptation_time", p.adaptation_time);
+  p.adaptation_min_scale = r.positive_or(n, where, "adaptation_min_scale", p.adaptation_min_scale);
+  p.adaptation_max_scale = r.positive_or(n, where, "adaptation_max_scale", p.adaptation_max_scale);
+  if (p.adaptation_min_scale > 1.0 || p.adaptation_max_scale < 1.0) {
+    r.fail(n, where, "adaptation_min_scale must be at most 1 and adaptation_max_scale at least 1");
+  }
+}
+
+void read_sensor_limits(const YamlReader& r, const YAML::Node& n, SensorLimits& p) {
+  const std::string where = "controller.sensor_limits";
+  r.expect_keys(n, where, {"max_force", "max_torque", "max_angular_rate", "max_acceleration", "encoder_margin",
+                           "frozen_cycles"});
+  if (!n) return;
+  p.max_force = r.positive_or(n, where, "max_force", p.max_force);
+  p.max_torque = r.positive_or(n, where, "max_torque", p.max_torque);
+  p.max_angular_rate = r.positive_or(n, where, "max_angular_rate", p.max_angular_rate);
+  p.max_acceleration = r.positive_or(n, where, "max_acceleration", p.max_acceleration);
+  p.encoder_margin = r.non_negative_or(n, where, "encoder_margin", p.encoder_margin);
+  const long frozen = r.integer_or(n, where, "frozen_cycles", p.frozen_cycles);
+  if (frozen < 0) r.fail(n["frozen_cycles"], where + ".frozen_cycles", "must be non-negative (0: off)");
+  p.frozen_cycles = static_cast<int>(frozen);
+}
+
 void read_controller(const YamlReader& r, const YAML::Node& c, ControllerConfig& p) {
   r.expect_keys(c, "controller", {"type", "model", "stabilizer", "ramp_time", "software_limit_margin_deg", "step_time",
                                   "double_support_ratio", "clearance", "start_shift", "arm_swing_gain", "task_gain",
                                   "null_space_gain", "joint_velocity_limit", "limits", "stance", "lift_height", "shift_time",
-                                  "lift_time", "hold_time", "step_table"});
+                                  "lift_time", "hold_time", "step_table", "stabilization", "sensor_limits"});
   if (!c) return;
   p.type = r.text_or(c, "controller", "type", p.type);
   if (p.type != "walking" && p.type != "standing" && p.type != "weight_shift") {
@@ -95,6 +146,8 @@ void read_controller(const YamlReader& r, const YAML::Node& c, ControllerConfig&
   }
   p.stabilizer = r.boolean_or(c, "controller", "stabilizer", p.stabilizer);
   p.walking.stabilizer = p.stabilizer;
+  read_stabilization(r, r.mapping(c, "controller", "stabilization"), w.stabilization);
+  read_sensor_limits(r, r.mapping(c, "controller", "sensor_limits"), w.sensor_limits);
   p.standing.ramp_time = r.non_negative_or(c, "controller", "ramp_time", p.standing.ramp_time);
   p.software_limit_margin_rad =
       r.non_negative_or(c, "controller", "software_limit_margin_deg", p.software_limit_margin_rad / kDeg) * kDeg;

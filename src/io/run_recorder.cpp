@@ -32,7 +32,7 @@ RunRecorder::RunRecorder(const Simulation& sim, std::ostream* csv) : csv_(csv) {
     const std::string p = name_of(side);
     o << ',' << p << "_Fz_des," << p << "_Tx_des," << p << "_Ty_des," << p << "_Fz," << p << "_Tx," << p << "_Ty";
   }
-  o << ",com_x_des,com_y_des,com_z_des,zmp_x_des,zmp_y_des,cmd_saturated,steps_completed,cycle_us";
+  o << ",com_x_des,com_y_des,com_z_des,zmp_x_des,zmp_y_des,cmd_saturated,steps_completed,contact_stiffness,cycle_us";
   for (int i = 0; i < sim.plant().mj()->nq; ++i) o << ",qpos_" << i;
   o << '\n';
 }
@@ -82,9 +82,9 @@ void RunRecorder::record(const Simulation& sim, const SensorData& sensors, const
                   des.torque.y(), meas.force.z(), meas.torque.x(), meas.torque.y());
     o << line_;
   }
-  std::snprintf(line_, sizeof(line_), ",%.6f,%.6f,%.6f,%.6f,%.6f,%d,%d,%.2f", status.com_desired.x(),
+  std::snprintf(line_, sizeof(line_), ",%.6f,%.6f,%.6f,%.6f,%.6f,%d,%d,%.4g,%.2f", status.com_desired.x(),
                 status.com_desired.y(), status.com_desired.z(), status.zmp_desired.x(), status.zmp_desired.y(),
-                status.command_saturated ? 1 : 0, status.steps_completed, cycle_us);
+                status.command_saturated ? 1 : 0, status.steps_completed, status.contact_stiffness, cycle_us);
   o << line_;
   for (int i = 0; i < m->nq; ++i) {
     std::snprintf(line_, sizeof(line_), ",%.7g", d->qpos[i]);

@@ -48,6 +48,7 @@ CandidateResult evaluate_step_candidate(const RobotModel& model, const WalkingCo
                                         double step_time, double double_support_ratio, int steps) {
   WalkingControllerParams params = base;
   params.stabilizer = false;
+  params.sensor_limits.frozen_cycles = 0;  // the kinematic replay below feeds constant F/T and IMU readings
   params.table = StepTable{};
   params.limits.vx_max = std::max(params.limits.vx_max, speed);  // judge the speed itself, unsaturated
   params.step.step_time = step_time;

@@ -73,6 +73,94 @@ TEST(Stabilizer, ForceControlTiltsTheFootToReduceTheTorqueError) {
   EXPECT_NEAR(torque_rate[0], 0.0, 1e-6);
 }
 
+// A foot on a ground of stiffness `true_stiffness` (the point-contact model of eq. 11): the measured
+// wrench is the ideal one minus K_true times the foot's modification.
+Wrench foot_on_ground(const RobotModel& model, Side side, double true_stiffness, const Wrench& ideal,
+                      const FootModification& m) {
+  const FootInfo& foot = model.foot(side);
+  Eigen::Matrix3d K = Eigen::Matrix3d::Zero();
+  for (double x : {foot.sole_x_min, foot.sole_x_max}) {
+    for (double y : {foot.sole_y_min, foot.sole_y_max}) {
+      const Eigen::Vector3d g(1.0, y, -x);
+      K += 0.25 * true_stiffness * g * g.transpose();
+    }
+  }
+  const Eigen::Vector3d push = -K * m.offset;
+  Wrench w = ideal;
+  w.force.z() += push[0];
+  w.torque.x() += push[1];
+  w.torque.y() += push[2];
+  return w;
+}
+
+// Tracks a normal force that ramps up by 200 N/s from the steady state; returns the final error.
+double ramp_tracking_error(const StabilizerParams& params) {
+  const RobotModel model = test::load_model("lola");
+  Stabilizer stabilizer(model, params);
+  const double dt = 0.001;
+  std::array<Wrench, 2> ideal = standing_wrenches(500.0), measured = ideal;
+  for (int i = 0; i < 3000; ++i) {
+    if (i >= 1000) ideal[0].force.z() += 200.0 * dt;
+    stabilizer.step(dt, ideal, {true, true}, {0.5, 0.5}, measured, Eigen::Quaterniond::Identity(), Eigen::Vector3d::Zero());
+    for (Side side : kSides) {
+      const int k = index_of(side);
+      // The ground answers the modification; the unmodified foot would carry 250 N.
+      Wrench unmodified = standing_wrenches(500.0)[k];
+      measured[k] = foot_on_ground(model, side, params.contact_stiffness, unmodified, stabilizer.modification()[k]);
+    }
+  }
+  return stabilizer.desired()[0].force.z() - measured[0].force.z();
+}
+
+// The integral-action extension of eq. (14): without feed-forward, the proportional force law lags a
+// ramp by rate/K_λ; the integral removes that lag.
+TEST(Stabilizer, IntegralForceActionRemovesTheRampLag) {
+  StabilizerParams params;
+  params.feedforward_gain = 0.0;
+  params.contact_filter_time = 1e-6;
+  const double proportional = ramp_tracking_error(params);
+  EXPECT_NEAR(proportional, 200.0 / params.force_gain, 0.5) << "the lag of the proportional law";
+  params.force_integral_gain = 100.0;
+  const double with_integral = ramp_tracking_error(params);
+  EXPECT_LT(std::abs(with_integral), 0.05 * std::abs(proportional));
+}
+
+// The stiffness-adaptation extension: both feet stand on a ground twice as stiff as the controller's
+// model, under one body that carries the planned load. The load split follows the feet's height
+// difference, δF_left = −(C/2)(δz_left − δz_right). While the force controller follows a changing
+// split (as λ_id changes in double support), the estimate converges to the true stiffness. Off, the
+// configured value stays.
+TEST(Stabilizer, ContactStiffnessAdaptationFindsTheGroundStiffness) {
+  const RobotModel model = test::load_model("lola");
+  for (bool adapt : {false, true}) {
+    StabilizerParams params;
+    params.contact_filter_time = 1e-6;
+    params.stiffness_adaptation = adapt;
+    const double true_stiffness = 2.0 * params.contact_stiffness;
+    Stabilizer stabilizer(model, params);
+    const double dt = 0.001;
+    std::array<Wrench, 2> ideal = standing_wrenches(500.0), measured = ideal;
+    for (int i = 0; i < 2000; ++i) {
+      const double shift = 100.0 * std::sin(2.0 * M_PI * 2.0 * i * dt);
+      ideal[0].force.z() = 250.0 + shift;
+      ideal[1].force.z() = 250.0 - shift;
+      stabilizer.step(dt, ideal, {true, true}, {0.5, 0.5}, measured, Eigen::Quaterniond::Identity(), Eigen::Vector3d::Zero());
+      std::array<double, 2> lift;  // each foot's modification as the nominal model's normal force
+      for (Side side : kSides) {
+        const int k = index_of(side);
+        measured[k] = foot_on_ground(model, side, true_stiffness, ideal[k], stabilizer.modification()[k]);
+        lift[k] = ideal[k].force.z() - measured[k].force.z();
+      }
+      for (int k = 0; k < 2; ++k) measured[k].force.z() = ideal[k].force.z() - 0.5 * (lift[k] - lift[1 - k]);
+    }
+    if (adapt) {
+      EXPECT_NEAR(stabilizer.contact_stiffness() / true_stiffness, 1.0, 0.1);
+    } else {
+      EXPECT_EQ(stabilizer.contact_stiffness(), params.contact_stiffness);
+    }
+  }
+}
+
 struct WalkOutcome {
   bool fell;
   double tilt_rms_x, tilt_rms_y, tilt_max;
@@ -134,6 +222,17 @@ TEST(StabilizerRobustness, NanForceReadingGivesASafeStopWithoutAFall) {
   EXPECT_FALSE(r.run.fell) << r.run.fall_reason;
   EXPECT_EQ(r.summary["final_state"], "safe_stop");
   EXPECT_EQ(r.summary["fault"], "left F/T sensor");
+}
+
+// The left F/T sensor freezes at 5 s while walking: the dead signal is noticed within the configured
+// number of cycles, the controller stops safely, the robot does not fall.
+TEST(StabilizerRobustness, FrozenForceSensorGivesASafeStopWithoutAFall) {
+  const Scenario scenario = load_scenario(test::source_path("config/scenarios/lola-ft-frozen.yaml"), {"duration=8"});
+  const RunConfig config = make_run_config(scenario);
+  const ScenarioResult r = run_scenario(scenario, config, "");
+  EXPECT_FALSE(r.run.fell) << r.run.fall_reason;
+  EXPECT_EQ(r.summary["final_state"], "safe_stop");
+  EXPECT_EQ(r.summary["fault"], "left F/T sensor frozen");
 }
 
 }  // namespace

@@ -26,6 +26,7 @@ struct KinematicLoop {
   static WalkingControllerParams open_loop() {
     WalkingControllerParams p;
     p.stabilizer = false;  // the kinematic loop has no real contact forces to stabilize with
+    p.sensor_limits.frozen_cycles = 0;  // and its F/T and IMU readings are constant
     return p;
   }
   explicit KinematicLoop(const std::string& robot)

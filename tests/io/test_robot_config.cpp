@@ -59,6 +59,32 @@ TEST(RobotConfig, ScenarioOverridesControllerAndSimulationKeys) {
   EXPECT_THROW(make_run_config(s), InputError);
 }
 
+// The stabilizer's gains and extensions are read from the robot's file; a scenario overrides single
+// keys and keeps the rest; inconsistent values name the key.
+TEST(RobotConfig, StabilizationKeysMergeAndAreChecked) {
+  Scenario s = scenario_with("lola");
+  s.controller = YAML::Load("{stabilization: {force_integral_gain: 80, stiffness_adaptation: true}, "
+                            "sensor_limits: {frozen_cycles: 0}}");
+  const RunConfig c = make_run_config(s);
+  const StabilizerParams& p = c.controller.walking.stabilization;
+  EXPECT_DOUBLE_EQ(p.force_integral_gain, 80.0);
+  EXPECT_TRUE(p.stiffness_adaptation);
+  EXPECT_DOUBLE_EQ(p.tilt_gain, make_run_config(scenario_with("lola")).controller.walking.stabilization.tilt_gain);
+  EXPECT_EQ(c.controller.walking.sensor_limits.frozen_cycles, 0);
+
+  s.controller = YAML::Load("{stabilization: {contact_force_low: 200, contact_force_high: 100}}");
+  try {
+    make_run_config(s);
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("controller.stabilization.contact_force_high"), std::string::npos) << e.what();
+  }
+  s.controller = YAML::Load("{stabilization: {tilt_gian: 1}}");
+  EXPECT_THROW(make_run_config(s), InputError);
+  s.controller = YAML::Load("{sensor_limits: {frozen_cycles: -1}}");
+  EXPECT_THROW(make_run_config(s), InputError);
+}
+
 TEST(RobotConfig, BareMjcfPathUsesDefaults) {
   const RunConfig c = make_run_config(scenario_with(test::model_path("johnnie")));
   EXPECT_EQ(c.robot, "johnnie");
