@@ -14,6 +14,7 @@
 #include "io/step_tables.hpp"
 #include "io/scenario.hpp"
 #include "io/scenario_runner.hpp"
+#include "io/speed_sweep.hpp"
 #include "io/yaml_reader.hpp"
 
 namespace {
@@ -104,6 +105,32 @@ int push_test_command(const std::string& scenario_path, const std::string& direc
   return 0;
 }
 
+int speed_sweep_command(const std::string& scenario_path, const biped::SpeedSweepOptions& options,
+                        const std::vector<std::string>& overrides, const std::string& json_path) {
+  const biped::Scenario scenario = biped::load_scenario(scenario_path, overrides);
+  const biped::RunConfig config = biped::make_run_config(scenario);
+  std::unique_ptr<biped::AtomicOutputFile> file;
+  if (!json_path.empty()) {
+    const auto dir = std::filesystem::path(json_path).parent_path();
+    if (!dir.empty()) biped::prepare_output_directory(dir.string());
+    file = std::make_unique<biped::AtomicOutputFile>(json_path);
+  }
+  const nlohmann::json r = biped::run_speed_sweep(scenario, config, options);
+  for (const auto& run : r["runs"]) {
+    std::printf("  commanded %.2f m/s: %s%s\n", run["commanded_mps"].get<double>(),
+                run["fell"].get<bool>()
+                    ? ("FELL at " + std::to_string(run["fall_time_s"].get<double>()) + " s").c_str()
+                    : ("walked " + std::to_string(run["walked_mps"].get<double>()) + " m/s").c_str(),
+                run["command_saturated"].get<bool>() ? " (command saturated by the step table)" : "");
+  }
+  std::printf("%s\n", r.dump().c_str());
+  if (file) {
+    file->stream() << r.dump(2) << '\n';
+    file->commit();
+  }
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -137,6 +164,18 @@ int main(int argc, char** argv) {
   push->add_option("--direction", push_direction, "forward | backward | left | right")->required();
   push->add_option("--set", push_overrides, "Override a scenario key")->type_name("KEY=VALUE");
 
+  std::string sweep_scenario, sweep_json;
+  std::vector<std::string> sweep_overrides;
+  biped::SpeedSweepOptions sweep_options;
+  CLI::App* sweep = app.add_subcommand("speed-sweep", "Straight walks at rising speeds: the highest speed without a fall");
+  sweep->add_option("scenario", sweep_scenario, "Scenario file (YAML): robot and parameters; its commands are replaced")->required();
+  sweep->add_option("--from", sweep_options.from, "First commanded speed [m/s]")->capture_default_str();
+  sweep->add_option("--to", sweep_options.to, "Last commanded speed [m/s]")->capture_default_str();
+  sweep->add_option("--step", sweep_options.step, "Speed increment [m/s]")->capture_default_str();
+  sweep->add_option("--hold", sweep_options.hold, "Seconds walked at each speed")->capture_default_str()->check(CLI::Range(1.0, 600.0));
+  sweep->add_option("--json", sweep_json, "Write the results as JSON");
+  sweep->add_option("--set", sweep_overrides, "Override a scenario key")->type_name("KEY=VALUE");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -149,6 +188,7 @@ int main(int argc, char** argv) {
     if (*tables) return tables_command(robot, table_out);
     if (*bench) return bench_command(bench_robot, bench_json, bench_duration);
     if (*push) return push_test_command(push_scenario, push_direction, push_overrides);
+    if (*sweep) return speed_sweep_command(sweep_scenario, sweep_options, sweep_overrides, sweep_json);
   } catch (const biped::InputError& e) {
     std::cerr << "error: " << e.what() << '\n';
     return kExitBadInput;

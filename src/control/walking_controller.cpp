@@ -32,6 +32,7 @@ WalkingController::WalkingController(const RobotModel& model, const WalkingContr
       rmrc_(model, space_, params.rmrc),
       pattern_(pattern_params(model, params)),
       stabilizer_(model, params.stabilization),
+      terrain_(params.terrain),
       com_estimator_(model),
       x_id_(Eigen::VectorXd::Zero(space_.dim())),
       xdot_id_(Eigen::VectorXd::Zero(space_.dim())),
@@ -45,6 +46,7 @@ void WalkingController::reset(const SensorData& first) {
   fsm_ = WalkingStateMachine{};
   num_planned_ = 0;
   stabilizer_.reset();
+  terrain_.reset();
   frozen_.reset(first);
   has_estimate_ = false;
   delta_x_.setZero();
@@ -138,6 +140,8 @@ void WalkingController::task_reference(const PatternSample& s) {
     const FootReference& foot = s.feet[k];
     x_id_.segment<3>(L.foot_position[k]) = foot.position - s.com;
     xdot_id_.segment<3>(L.foot_position[k]) = foot.velocity - s.com_velocity;
+    x_id_[L.foot_position[k] + 2] += terrain_.foot_offset(k) - terrain_.com_offset();
+    xdot_id_[L.foot_position[k] + 2] += terrain_.foot_offset_rate(k) - terrain_.com_offset_rate();
     x_id_.segment<3>(L.foot_orientation[k]) << 0.0, 0.0, wrap(foot.yaw - s.heading);
     xdot_id_.segment<3>(L.foot_orientation[k]) << 0.0, 0.0, foot.yaw_rate - s.heading_rate;
     // Arms swing against the legs: the right arm forward with the left leg.
@@ -161,6 +165,8 @@ void WalkingController::task_reference(const PatternSample& s) {
   xdot_id_.segment<3>(L.upper_body_orientation) << 0.0, 0.0, s.heading_rate;
   x_id_.segment<3>(L.com) = s.com;
   xdot_id_.segment<3>(L.com) = s.com_velocity;
+  x_id_[L.com + 2] += terrain_.com_offset();
+  xdot_id_[L.com + 2] += terrain_.com_offset_rate();
 }
 
 // S̄ᵀΔx_λ of eq. (21): the feet's height and tilt modifications enter the foot rows; the tilt is
@@ -228,6 +234,7 @@ void WalkingController::step(const SensorData& sensors, const WalkCommand& comma
   replan(t, fsm_.update(wants_to_walk, at_touchdown), v);
 
   pattern_.sample(t, sample_);
+  if (params_.stabilizer && use_sensors) terrain_.step(params_.rmrc.dt, sample_, sensors.foot_wrench);
   task_reference(sample_);
   using Clock = std::chrono::steady_clock;
   const auto stabilizer_start = Clock::now();

@@ -12,6 +12,7 @@
 #include "control/sensor_check.hpp"
 #include "control/stabilizer.hpp"
 #include "control/state_estimation.hpp"
+#include "control/terrain_adaptation.hpp"
 #include "control/walking_state_machine.hpp"
 #include "model/task_space.hpp"
 #include "planning/step_sequence_planner.hpp"
@@ -29,6 +30,7 @@ struct WalkingControllerParams {
   ResolvedMotionRateControlParams rmrc;
   bool stabilizer = true;           // false: the open-loop baseline (pattern → eq. (21) only)
   StabilizerParams stabilization;
+  TerrainAdaptationParams terrain;  // used with the stabilizer (it needs the F/T sensors)
   SensorLimits sensor_limits;
 };
 
@@ -50,6 +52,7 @@ class WalkingController final : public Controller {
   const PatternSample& pattern() const { return sample_; }
   const ResolvedMotionRateControl& rmrc() const { return rmrc_; }
   const Stabilizer& stabilizer() const { return stabilizer_; }
+  const TerrainAdaptation& terrain() const { return terrain_; }
   const CycleTiming& timing() const { return timing_; }
   // The inputs eq. (21) got in the last cycle (to replay them, e.g. in the SVD baseline).
   const Eigen::VectorXd& task_reference() const { return x_id_; }
@@ -72,6 +75,7 @@ class WalkingController final : public Controller {
   ResolvedMotionRateControl rmrc_;
   WalkingPatternGenerator pattern_;
   Stabilizer stabilizer_;
+  TerrainAdaptation terrain_;
   CoMEstimator com_estimator_;
   FrozenSignalDetector frozen_;
   Eigen::Vector2d com_estimate_ = Eigen::Vector2d::Zero();       // CoM − stance foot, heading frame

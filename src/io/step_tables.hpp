@@ -26,7 +26,7 @@ namespace biped {
 
 struct StepTableSearch {
   std::vector<double> speeds = {0.0, 0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9, 1.0};
-  std::vector<double> step_times = {0.6, 0.7, 0.8, 0.9, 1.0};
+  std::vector<double> step_times = {0.5, 0.55, 0.6, 0.7, 0.8, 0.9, 1.0};
   std::vector<double> double_support_ratios = {0.1, 0.15, 0.2, 0.3};
   int steps = 6;           // steps walked per candidate
   double turn_rate = 0.15;  // [rad/s] of the closed-loop check

@@ -1,0 +1,76 @@
+#include "io/speed_sweep.hpp"
+
+#include <cmath>
+
+#include "io/scenario_runner.hpp"
+#include "io/yaml_reader.hpp"
+
+namespace biped {
+namespace {
+
+// The robot's forward progress over the hold phase (ground truth) and whether the controller
+// clamped the command.
+class HoldPhaseObserver final : public RunObserver {
+ public:
+  explicit HoldPhaseObserver(double hold_start) : hold_start_(hold_start) {}
+  void record(const Simulation& sim, const SensorData&, const JointCommand&, const ControllerStatus& status,
+              double) override {
+    saturated_ = saturated_ || status.command_saturated;
+    const double x = sim.data()->qpos[0];
+    if (sim.time() < hold_start_) {
+      start_x_ = x;
+      start_t_ = sim.time();
+    }
+    end_x_ = x;
+    end_t_ = sim.time();
+  }
+  double speed() const { return end_t_ > start_t_ ? (end_x_ - start_x_) / (end_t_ - start_t_) : 0.0; }
+  bool saturated() const { return saturated_; }
+
+ private:
+  double hold_start_;
+  double start_x_ = 0.0, start_t_ = 0.0, end_x_ = 0.0, end_t_ = 0.0;
+  bool saturated_ = false;
+};
+
+}  // namespace
+
+nlohmann::json run_speed_sweep(const Scenario& base, const RunConfig& config, const SpeedSweepOptions& options) {
+  if (!(options.step > 0.0) || !(options.from > 0.0) || options.to < options.from) {
+    throw InputError("speed-sweep: need 0 < --from <= --to and --step > 0");
+  }
+  nlohmann::json runs = nlohmann::json::array();
+  double fastest = 0.0;
+  const int count = static_cast<int>(std::floor((options.to - options.from) / options.step + 1e-9)) + 1;
+  for (int i = 0; i < count; ++i) {
+    const double speed = options.from + i * options.step;
+    Scenario scenario = base;
+    scenario.commands.clear();
+    const double start = 1.0, ramp = speed / options.ramp_rate;
+    for (double t = 0.0; t < ramp; t += 0.1) {
+      scenario.commands.push_back({start + t, WalkCommand{speed * t / ramp, 0.0, 0.0, false}});
+    }
+    scenario.commands.insert(scenario.commands.begin(), {0.0, WalkCommand{}});
+    scenario.commands.push_back({start + ramp, WalkCommand{speed, 0.0, 0.0, false}});
+    const double hold_start = start + ramp + 2.0;  // the gait settles at the new speed first
+    scenario.duration = hold_start + options.hold;
+    HoldPhaseObserver observer(hold_start);
+    const ScenarioResult r = run_scenario(scenario, config, "", &observer);
+    const bool fell = r.summary["fell"].get<bool>();
+    runs.push_back({{"commanded_mps", speed},
+                    {"fell", fell},
+                    {"fall_time_s", r.summary["fall_time_s"]},
+                    {"walked_mps", fell ? nlohmann::json(nullptr) : nlohmann::json(observer.speed())},
+                    {"command_saturated", observer.saturated()},
+                    {"upper_body_tilt_deg", r.summary["upper_body_tilt_deg"]}});
+    if (!fell && !observer.saturated()) fastest = speed;
+  }
+  return {{"robot", config.robot},
+          {"scenario", base.name},
+          {"stabilizer", config.controller.stabilizer},
+          {"hold_s", options.hold},
+          {"fastest_without_fall_mps", fastest},
+          {"runs", runs}};
+}
+
+}  // namespace biped
