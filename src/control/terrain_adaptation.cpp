@@ -9,6 +9,21 @@ void TerrainAdaptation::reset() {
   com_offset_ = com_rate_ = 0.0;
 }
 
+void TerrainAdaptation::hold(double dt) {
+  // A foot that was not standing when the readings stopped being trusted goes to the height of the
+  // ground the other foot stands on, so that it lands there.
+  for (int k = 0; k < 2; ++k) {
+    Foot& foot = feet_[k];
+    if (foot.phase == Phase::Stance) {
+      foot.rate = 0.0;
+      continue;
+    }
+    const double target = feet_[1 - k].ground;
+    set_offset(foot, foot.offset + std::clamp(target - foot.offset, -kSwingSpeed * dt, kSwingSpeed * dt), dt);
+  }
+  com_rate_ = 0.0;
+}
+
 void TerrainAdaptation::set_offset(Foot& foot, double offset, double dt) {
   foot.rate = (offset - foot.offset) / dt;
   foot.offset = offset;
@@ -29,7 +44,7 @@ void TerrainAdaptation::step(double dt, const PatternSample& s, const std::array
       if (foot.phase == Phase::Swing) {
         // Aim at the ground the stance foot stands on; lift-off lets the force fade first.
         const double target = other.ground;
-        set_offset(foot, foot.offset + std::clamp(target - foot.offset, -0.5 * dt, 0.5 * dt), dt);
+        set_offset(foot, foot.offset + std::clamp(target - foot.offset, -kSwingSpeed * dt, kSwingSpeed * dt), dt);
         if (contact && plan.velocity.z() < 0.0) {
           foot.phase = Phase::Latched;
           foot.latched_height = plan.position.z() + foot.offset;

@@ -33,6 +33,9 @@ class TerrainAdaptation {
   void reset();
   // One cycle with the pattern's sample and the measured contact wrenches.
   void step(double dt, const PatternSample& s, const std::array<Wrench, 2>& measured);
+  // Without trusted force readings: standing feet keep their offsets, a foot in the air goes to the
+  // other foot's ground height.
+  void hold(double dt);
 
   // Offsets of the planned heights [m] and their rates [m/s]: per foot (by Side) and of the CoM.
   double foot_offset(int k) const { return feet_[k].offset; }
@@ -52,6 +55,7 @@ class TerrainAdaptation {
     double filtered_force = 0.0;
   };
   void set_offset(Foot& foot, double offset, double dt);
+  static constexpr double kSwingSpeed = 0.5;  // [m/s] a swinging foot's offset moves to its target at most this fast
 
   TerrainAdaptationParams params_;
   std::array<Foot, 2> feet_;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstring>
 
 #include <Eigen/Geometry>
 
@@ -38,7 +39,8 @@ WalkingController::WalkingController(const RobotModel& model, const WalkingContr
       xdot_id_(Eigen::VectorXd::Zero(space_.dim())),
       delta_x_(Eigen::VectorXd::Zero(space_.dim())),
       delta_xdot_(Eigen::VectorXd::Zero(space_.dim())),
-      last_setpoint_(model.stand_pose()) {}
+      last_setpoint_(model.stand_pose()),
+      substituted_sensors_(model.num_joints()) {}
 
 void WalkingController::reset(const SensorData& first) {
   start_time_ = first.time;
@@ -47,6 +49,7 @@ void WalkingController::reset(const SensorData& first) {
   num_planned_ = 0;
   stabilizer_.reset();
   terrain_.reset();
+  faulty_foot_sensor_ = -1;
   frozen_.reset(first);
   has_estimate_ = false;
   delta_x_.setZero();
@@ -208,18 +211,30 @@ void WalkingController::com_error(const SensorData& sensors, const PatternSample
 
 Eigen::Matrix3d WalkingController::heading_frame() const { return yaw_rotation(sample_.heading); }
 
-void WalkingController::step(const SensorData& sensors, const WalkCommand& command, JointCommand& out) {
+void WalkingController::step(const SensorData& raw_sensors, const WalkCommand& command, JointCommand& out) {
   if (fsm_.state() != WalkingState::SafeStop) {
-    const char* fault = check_sensors(model_, params_.sensor_limits, sensors);
-    if (!fault) fault = frozen_.update(sensors, params_.sensor_limits.frozen_cycles);
+    const char* fault = check_sensors(model_, params_.sensor_limits, raw_sensors);
+    if (!fault) fault = frozen_.update(raw_sensors, params_.sensor_limits.frozen_cycles);
     if (fault) {
       fsm_.enter_safe_stop();
       status_.fault = true;
       status_.fault_reason = fault;
+      faulty_foot_sensor_ = std::strncmp(fault, "left F/T", 8) == 0    ? 0
+                            : std::strncmp(fault, "right F/T", 9) == 0 ? 1
+                                                                       : -1;
     }
   }
-  // After a fault no sensor is trusted: the stop runs on the pattern and eq. (21) alone.
-  const bool use_sensors = !status_.fault;
+  // After the fault of one F/T sensor the stop keeps stabilizing with the others: that foot's
+  // reading is replaced by the wrench the controller asked for (no force error, feed-forward only).
+  // After any other fault no sensor is trusted: the stop runs on the pattern and eq. (21) alone.
+  const bool use_sensors = !status_.fault || faulty_foot_sensor_ >= 0;
+  const SensorData* used = &raw_sensors;
+  if (status_.fault && faulty_foot_sensor_ >= 0) {
+    substituted_sensors_ = raw_sensors;
+    substituted_sensors_.foot_wrench[faulty_foot_sensor_] = stabilizer_.desired()[faulty_foot_sensor_];
+    used = &substituted_sensors_;
+  }
+  const SensorData& sensors = *used;
 
   const double t = sensors.time - start_time_;
   bool saturated = false;
@@ -234,7 +249,9 @@ void WalkingController::step(const SensorData& sensors, const WalkCommand& comma
   replan(t, fsm_.update(wants_to_walk, at_touchdown), v);
 
   pattern_.sample(t, sample_);
-  if (params_.stabilizer && use_sensors) terrain_.step(params_.rmrc.dt, sample_, sensors.foot_wrench);
+  // Finding the ground needs both F/T sensors; after a fault the footholds keep their heights.
+  if (params_.stabilizer && !status_.fault) terrain_.step(params_.rmrc.dt, sample_, sensors.foot_wrench);
+  if (status_.fault) terrain_.hold(params_.rmrc.dt);
   task_reference(sample_);
   using Clock = std::chrono::steady_clock;
   const auto stabilizer_start = Clock::now();

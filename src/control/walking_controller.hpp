@@ -95,6 +95,8 @@ class WalkingController final : public Controller {
   std::array<Eigen::Vector3d, 2> arm_pivot_;   // shoulder pitch axis − upper body origin, heading frame
   Eigen::VectorXd x_id_, xdot_id_, delta_x_, delta_xdot_;
   Eigen::VectorXd last_setpoint_;
+  int faulty_foot_sensor_ = -1;        // side index of a failed F/T sensor, −1: none
+  SensorData substituted_sensors_;     // the readings with the failed sensor replaced (preallocated)
 };
 
 }  // namespace biped

@@ -97,11 +97,23 @@ void read_sensor_limits(const YamlReader& r, const YAML::Node& n, SensorLimits& 
   p.frozen_cycles = static_cast<int>(frozen);
 }
 
+void read_terrain_adaptation(const YamlReader& r, const YAML::Node& n, TerrainAdaptationParams& p) {
+  const std::string where = "controller.terrain_adaptation";
+  r.expect_keys(n, where, {"enabled", "contact_force", "filter_time", "search_speed", "max_step", "com_follow_time"});
+  if (!n) return;
+  p.enabled = r.boolean_or(n, where, "enabled", p.enabled);
+  p.contact_force = r.positive_or(n, where, "contact_force", p.contact_force);
+  p.filter_time = r.positive_or(n, where, "filter_time", p.filter_time);
+  p.search_speed = r.positive_or(n, where, "search_speed", p.search_speed);
+  p.max_step = r.positive_or(n, where, "max_step", p.max_step);
+  p.com_follow_time = r.positive_or(n, where, "com_follow_time", p.com_follow_time);
+}
+
 void read_controller(const YamlReader& r, const YAML::Node& c, ControllerConfig& p) {
   r.expect_keys(c, "controller", {"type", "model", "stabilizer", "ramp_time", "software_limit_margin_deg", "step_time",
                                   "double_support_ratio", "clearance", "start_shift", "arm_swing_gain", "task_gain",
                                   "null_space_gain", "joint_velocity_limit", "limits", "stance", "lift_height", "shift_time",
-                                  "lift_time", "hold_time", "step_table", "stabilization", "sensor_limits"});
+                                  "lift_time", "hold_time", "step_table", "stabilization", "sensor_limits", "terrain_adaptation"});
   if (!c) return;
   p.type = r.text_or(c, "controller", "type", p.type);
   if (p.type != "walking" && p.type != "standing" && p.type != "weight_shift") {
@@ -148,6 +160,7 @@ void read_controller(const YamlReader& r, const YAML::Node& c, ControllerConfig&
   p.walking.stabilizer = p.stabilizer;
   read_stabilization(r, r.mapping(c, "controller", "stabilization"), w.stabilization);
   read_sensor_limits(r, r.mapping(c, "controller", "sensor_limits"), w.sensor_limits);
+  read_terrain_adaptation(r, r.mapping(c, "controller", "terrain_adaptation"), w.terrain);
   p.standing.ramp_time = r.non_negative_or(c, "controller", "ramp_time", p.standing.ramp_time);
   p.software_limit_margin_rad =
       r.non_negative_or(c, "controller", "software_limit_margin_deg", p.software_limit_margin_rad / kDeg) * kDeg;

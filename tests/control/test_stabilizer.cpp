@@ -215,13 +215,26 @@ INSTANTIATE_TEST_SUITE_P(
                       Robustness{"lola-model-error", {}},
                       Robustness{"lola-model-error", {"model_error.upper_body_mass_scale=0.9"}}));
 
-// One NaN reading of a force/torque sensor while walking: safe stop, no NaN set-point, no fall.
-TEST(StabilizerRobustness, NanForceReadingGivesASafeStopWithoutAFall) {
-  const Scenario scenario = load_scenario(test::source_path("config/scenarios/lola-ft-nan.yaml"));
+// The JOHNNIE scenario: a circle of radius 1.5 m, 60 s, the joystick changing speed
+// (0.2–0.5 m/s) and direction. (It fell at 43.6 s before the CoM height followed the footholds.)
+TEST(StabilizerRobustness, JohnnieWalksTheSixtySecondCircle) {
+  const Scenario scenario = load_scenario(test::source_path("config/scenarios/johnnie-circle.yaml"));
   const ScenarioResult r = run_scenario(scenario, make_run_config(scenario), "");
-  EXPECT_FALSE(r.run.fell) << r.run.fall_reason;
-  EXPECT_EQ(r.summary["final_state"], "safe_stop");
-  EXPECT_EQ(r.summary["fault"], "left F/T sensor");
+  EXPECT_FALSE(r.run.fell) << r.run.fall_reason << " at " << r.run.fall_time;
+  EXPECT_GT(r.summary["steps"].get<int>(), 80);
+}
+
+// One NaN reading of a force/torque sensor while walking: safe stop, no NaN set-point, no fall.
+// The fault comes at several phases of the gait (double support, early and late single support).
+TEST(StabilizerRobustness, NanForceReadingGivesASafeStopWithoutAFall) {
+  for (const char* t : {"4.8", "5.0", "5.3", "6.0"}) {
+    const Scenario scenario =
+        load_scenario(test::source_path("config/scenarios/lola-ft-nan.yaml"), {std::string("sensors.faults.0.t=") + t});
+    const ScenarioResult r = run_scenario(scenario, make_run_config(scenario), "");
+    EXPECT_FALSE(r.run.fell) << "fault at " << t << " s: " << r.run.fall_reason;
+    EXPECT_EQ(r.summary["final_state"], "safe_stop");
+    EXPECT_EQ(r.summary["fault"], "left F/T sensor");
+  }
 }
 
 // The left F/T sensor freezes at 5 s while walking: the dead signal is noticed within the configured
