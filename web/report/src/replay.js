@@ -28,16 +28,23 @@ function geometryOf(geom) {
 
 function meshOf(geom) {
   if (geom.type === 'plane') {
-    // An infinite plane (size 0) is drawn 200 m wide with a 1 m grid on it.
+    // An infinite plane (size 0) is drawn 200 m wide. Its 1 m grid is a texture, not lines: some
+    // software renderers drop lines that cross the near plane.
     const w = geom.size[0] > 0 ? 2 * geom.size[0] : 200, h = geom.size[1] > 0 ? 2 * geom.size[1] : 200;
-    const group = new THREE.Group();
-    group.add(new THREE.Mesh(new THREE.PlaneGeometry(w, h),
-      new THREE.MeshLambertMaterial({ color: 0xf2f3f5 })));
-    const grid = new THREE.GridHelper(Math.max(w, h), Math.max(w, h), 0x8c929c, 0xa8adb5);
-    grid.rotation.x = Math.PI / 2;
-    grid.position.z = 0.001;
-    group.add(grid);
-    return group;
+    const cell = document.createElement('canvas');
+    cell.width = cell.height = 128;
+    const ctx = cell.getContext('2d');
+    ctx.fillStyle = '#eceef1';
+    ctx.fillRect(0, 0, 128, 128);
+    ctx.strokeStyle = '#a4a9b1';
+    ctx.lineWidth = 3;
+    ctx.strokeRect(0, 0, 128, 128);
+    const texture = new THREE.CanvasTexture(cell);
+    texture.wrapS = texture.wrapT = THREE.RepeatWrapping;
+    texture.repeat.set(w, h);
+    texture.anisotropy = 8;
+    texture.colorSpace = THREE.SRGBColorSpace;
+    return new THREE.Mesh(new THREE.PlaneGeometry(w, h), new THREE.MeshLambertMaterial({ map: texture }));
   }
   const geometry = geometryOf(geom);
   if (!geometry) return null;
