@@ -95,7 +95,10 @@ ReportWriter::ReportWriter(const Simulation& sim, double replay_rate_hz) : repla
     geoms.push_back(geom);
   }
   nlohmann::json bodies = nlohmann::json::array();
-  for (int body : replay_bodies_) bodies.push_back(mj_id2name(m, mjOBJ_BODY, body));
+  for (int body : replay_bodies_) {
+    const char* name = mj_id2name(m, mjOBJ_BODY, body);
+    bodies.push_back(name ? std::string(name) : "body " + std::to_string(body));
+  }
   nlohmann::json soles = nlohmann::json::array();
   for (Side side : kSides) {
     const FootInfo& f = sim.plant().foot(side);

@@ -51,7 +51,14 @@ function main() {
     cursor.t = Math.min(Math.max(t, data.replay.t[0] ?? 0), data.replay.t[data.replay.t.length - 1] ?? 0);
     for (const f of cursor.listeners) f(cursor.t);
   };
-  const replay = createReplay(viewer, controls, data, cursor, setTime);
+  // Without WebGL the plots still work; the viewer says why it stays empty.
+  let replay = null;
+  try {
+    replay = createReplay(viewer, controls, data, cursor, setTime);
+  } catch (e) {
+    viewer.textContent = `The 3D replay needs WebGL, which this browser does not provide (${e.message}).`;
+    console.error(e);
+  }
   const charts = createPlots(plots, data, cursor, setTime);
   setTime(0);
 
@@ -65,10 +72,10 @@ function main() {
       points: c.data[0].length,
       series: c.data.slice(1).map((s) => s.filter((v) => v !== null && Number.isFinite(v)).length),
     })),
-    bodyPosition: (name) => replay.bodyPosition(name),
-    pelvis: () => replay.bodyPosition(data.model.bodies[data.model.pelvis]),
-    canvas: () => replay.canvas,
-    render: () => replay.render(),
+    bodyPosition: (name) => replay?.bodyPosition(name) ?? null,
+    pelvis: () => replay?.bodyPosition(data.model.bodies[data.model.pelvis]) ?? null,
+    canvas: () => replay?.canvas ?? null,
+    render: () => replay?.render(),
   };
 }
 
