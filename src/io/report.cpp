@@ -61,7 +61,9 @@ Eigen::Vector3d sole_point(const mjData* d, const FootInfo& foot, double x, doub
 
 }  // namespace
 
-ReportWriter::ReportWriter(const Simulation& sim, double replay_rate_hz) : replay_period_(1.0 / replay_rate_hz) {
+ReportWriter::ReportWriter(const Simulation& sim, double replay_rate_hz)
+    : control_period_(sim.plant().mj()->opt.timestep * sim.physics_steps_per_control_period()),
+      replay_period_(1.0 / replay_rate_hz) {
   const mjModel* m = sim.plant().mj();
   std::vector<int> index_of_body(m->nbody, -1);
   auto replayed = [&](int body) {
@@ -241,6 +243,7 @@ void ReportWriter::record(const Simulation& sim, const SensorData& sensors, cons
   add("support_y_max", 4, support[3]);
   for (const JointInfo& j : plant.joints()) add("q:" + j.name, 2, d->qpos[j.qpos_adr] * kRadToDeg);
   add("cycle_us", 1, cycle_us);
+  cycle_index_.push_back(std::lround(t / control_period_));
   note_planned_steps(status, t);
 
   // One frame in each replay period (the first logged instant in it).
@@ -255,8 +258,16 @@ void ReportWriter::record(const Simulation& sim, const SensorData& sensors, cons
   }
 }
 
-nlohmann::json ReportWriter::data(const nlohmann::json& summary) const {
+nlohmann::json ReportWriter::data(const nlohmann::json& summary, const std::vector<double>& cycle_us) const {
   nlohmann::json log = {{"states", states_}};
+  std::vector<double> longest(cycle_index_.size(), kNaN);
+  for (std::size_t i = 0; i < cycle_index_.size(); ++i) {
+    const std::size_t begin = std::min<std::size_t>(cycle_index_[i], cycle_us.size());
+    const std::size_t end = i + 1 < cycle_index_.size() ? std::min<std::size_t>(cycle_index_[i + 1], cycle_us.size())
+                                                        : cycle_us.size();
+    if (begin < end) longest[i] = *std::max_element(cycle_us.begin() + begin, cycle_us.begin() + end);
+  }
+  log["cycle_us_max"] = series(longest, 1);
   nlohmann::json feet = {{"left", {{"side", "left"}}}, {"right", {{"side", "right"}}}};
   for (const auto& [name, column] : log_) {
     if (name.starts_with("q:")) continue;
@@ -291,11 +302,12 @@ nlohmann::json ReportWriter::data(const nlohmann::json& summary) const {
           {"footprints", footprints}};
 }
 
-void ReportWriter::write_html(std::ostream& out, const nlohmann::json& summary) const {
+void ReportWriter::write_html(std::ostream& out, const nlohmann::json& summary,
+                              const std::vector<double>& cycle_us) const {
   // Inside a script element "</script" or "<!--" would end or confuse it: '<' occurs in JSON only
   // inside strings, where "\u003c" is the same character.
   std::string json;
-  for (char c : data(summary).dump()) {
+  for (char c : data(summary, cycle_us).dump()) {
     if (c == '<') json += "\\u003c";
     else json += c;
   }

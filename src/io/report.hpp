@@ -27,10 +27,11 @@ class ReportWriter final : public RunObserver {
   void record(const Simulation& sim, const SensorData& sensors, const JointCommand& setpoints,
               const ControllerStatus& status, double cycle_us) override;
 
-  // Everything the page shows; `summary` is the run's summary.json.
-  nlohmann::json data(const nlohmann::json& summary) const;
+  // Everything the page shows; `summary` is the run's summary.json, `cycle_us` the duration of
+  // every controller cycle (RunResult::cycle_us; the longest of each log interval is plotted).
+  nlohmann::json data(const nlohmann::json& summary, const std::vector<double>& cycle_us) const;
   // The page: the data and the viewer script inline, nothing loaded from elsewhere.
-  void write_html(std::ostream& out, const nlohmann::json& summary) const;
+  void write_html(std::ostream& out, const nlohmann::json& summary, const std::vector<double>& cycle_us) const;
 
  private:
   // A logged signal, rounded to `decimals` in the page (NaN: no value, shown as a gap).
@@ -57,6 +58,8 @@ class ReportWriter final : public RunObserver {
   nlohmann::json model_;                 // geoms, bodies, soles
   nlohmann::json joints_ = nlohmann::json::array();  // names and limits [deg]
   std::vector<int> replay_bodies_;       // MuJoCo body ids whose poses are replayed
+  double control_period_;          // [s]
+  std::vector<long> cycle_index_;  // controller cycle of each record
   double replay_period_;
   double next_replay_t_ = 0.0;
   std::vector<double> replay_t_;

@@ -86,7 +86,7 @@ ScenarioResult run_scenario(const Scenario& scenario, const RunConfig& config, c
   result.summary["controller"] = config.controller.type;
   if (summary_file) {
     summary_file->stream() << result.summary.dump(2) << '\n';
-    report->write_html(report_file->stream(), result.summary);
+    report->write_html(report_file->stream(), result.summary, result.run.cycle_us);
     log_file->commit();
     summary_file->commit();
     report_file->commit();

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <set>
@@ -47,13 +48,14 @@ struct StandingRun : ::testing::Test {
   RobotModel model = load_controller_model(config);
   Simulation sim{config.sim, model};
   ReportWriter report{sim};
+  RunResult run;
 
   void SetUp() override {
     std::unique_ptr<Controller> controller = make_controller(config, model);
     RunOptions options;
     options.duration = 0.3;
     options.log_period = 0.01;
-    run_closed_loop(sim, *controller, scenario.commands, options, &report);
+    run = run_closed_loop(sim, *controller, scenario.commands, options, &report);
   }
 };
 
@@ -61,7 +63,7 @@ TEST_F(StandingRun, PageHoldsTheBundleAndTheDataParsesBack) {
   ASSERT_GT(report_bundle().size(), 100000u) << "three.js and uPlot are in the bundle";
   const json summary = {{"scenario", "lola-stand"}, {"robot", "lola"}};
   std::ostringstream page;
-  report.write_html(page, summary);
+  report.write_html(page, summary, run.cycle_us);
   const std::string html = page.str();
   EXPECT_EQ(html.rfind("<!DOCTYPE html>", 0), 0u);
   EXPECT_NE(html.find(report_bundle()), std::string::npos);
@@ -76,6 +78,13 @@ TEST_F(StandingRun, PageHoldsTheBundleAndTheDataParsesBack) {
     EXPECT_TRUE(data["log"].contains(key)) << key;
   }
   EXPECT_EQ(data["log"]["states"], json::array({"standing"}));
+  // The longest cycle of each 10 ms log interval: the cycles there, the logged one among them.
+  ASSERT_EQ(run.cycle_us.size(), 300u);
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto interval = run.cycle_us.begin() + 10 * static_cast<long>(i);
+    EXPECT_NEAR(data["log"]["cycle_us_max"][i].get<double>(), *std::max_element(interval, interval + 10), 0.051);
+    EXPECT_GE(data["log"]["cycle_us_max"][i].get<double>(), data["log"]["cycle_us"][i].get<double>());
+  }
   ASSERT_EQ(data["feet"].size(), 2u);
   for (const json& foot : data["feet"]) {
     expect_series_length(foot, n, foot["side"].get<std::string>());
@@ -106,7 +115,7 @@ TEST_F(StandingRun, PageHoldsTheBundleAndTheDataParsesBack) {
 TEST_F(StandingRun, StringsCannotEndTheDataElement) {
   const std::string hostile = "a</script><script>alert(1)</script><!-- b";
   std::ostringstream page;
-  report.write_html(page, {{"scenario", hostile}});
+  report.write_html(page, {{"scenario", hostile}}, run.cycle_us);
   const std::string html = page.str();
   const std::size_t data_start = html.find(kDataOpen);
   const std::size_t data_end = html.find("</script>", data_start);

@@ -53,7 +53,8 @@ function definitions(data) {
   });
   defs.push({
     title: 'Controller cycle time (wall clock)', unit: 'µs',
-    series: [line('cycle', L.cycle_us, BLUE, { width: 1 })],
+    series: [line('longest cycle of the log interval', L.cycle_us_max, RED, { width: 1 }),
+      line('logged cycle', L.cycle_us, BLUE, { width: 1 })],
   });
   return defs;
 }
