@@ -184,12 +184,12 @@ void ReportWriter::record(const Simulation& sim, const SensorData& sensors, cons
   const math::TiltAngles tilt = math::tilt_against_gravity(math::mat_from_mujoco(d->xmat + 9 * plant.upper_body()));
   add("phi_x", 3, tilt.sagittal * kRadToDeg);
   add("phi_y", 3, tilt.lateral * kRadToDeg);
-  // The CoM of the whole robot is the subtree CoM of the world body.
   register_controller_frame(sim);
   const Eigen::Vector2d com_des = to_world(status.com_desired.head<2>());
   const Eigen::Vector2d com_est = status.com_estimate_valid ? to_world(status.com_estimated)
                                                             : Eigen::Vector2d::Constant(kNaN);
   const Eigen::Vector2d zmp_des = to_world(status.zmp_desired);
+  // The CoM of the whole robot is the subtree CoM of the world body.
   for (int k = 0; k < 2; ++k) {
     const std::string axis = k == 0 ? "x" : "y";
     add("com_" + axis, 4, d->subtree_com[k]);
@@ -202,7 +202,7 @@ void ReportWriter::record(const Simulation& sim, const SensorData& sensors, cons
 
   Eigen::Vector3d cop_sum = Eigen::Vector3d::Zero();
   double fz_sum = 0.0;
-  double support[4] = {kNaN, kNaN, kNaN, kNaN};  // x min, x max, y min, y max
+  Eigen::AlignedBox2d support;  // of the soles on the ground (empty: none)
   for (Side side : kSides) {
     const std::string p = name_of(side);
     const FootInfo& foot = plant.foot(side);
@@ -226,21 +226,18 @@ void ReportWriter::record(const Simulation& sim, const SensorData& sensors, cons
     if (sim.foot_contact_force(side) > kSupportMinForceN) {
       for (double x : {foot.sole_x_min, foot.sole_x_max}) {
         for (double y : {foot.sole_y_min, foot.sole_y_max}) {
-          const Eigen::Vector3d corner = sole_point(d, foot, x, y);
-          support[0] = std::isnan(support[0]) ? corner.x() : std::min(support[0], corner.x());
-          support[1] = std::isnan(support[1]) ? corner.x() : std::max(support[1], corner.x());
-          support[2] = std::isnan(support[2]) ? corner.y() : std::min(support[2], corner.y());
-          support[3] = std::isnan(support[3]) ? corner.y() : std::max(support[3], corner.y());
+          support.extend(sole_point(d, foot, x, y).head<2>());
         }
       }
     }
   }
   add("cop_x", 4, fz_sum > 0.0 ? cop_sum.x() / fz_sum : kNaN);
   add("cop_y", 4, fz_sum > 0.0 ? cop_sum.y() / fz_sum : kNaN);
-  add("support_x_min", 4, support[0]);
-  add("support_x_max", 4, support[1]);
-  add("support_y_min", 4, support[2]);
-  add("support_y_max", 4, support[3]);
+  const bool supported = !support.isEmpty();
+  add("support_x_min", 4, supported ? support.min().x() : kNaN);
+  add("support_x_max", 4, supported ? support.max().x() : kNaN);
+  add("support_y_min", 4, supported ? support.min().y() : kNaN);
+  add("support_y_max", 4, supported ? support.max().y() : kNaN);
   for (const JointInfo& j : plant.joints()) add("q:" + j.name, 2, d->qpos[j.qpos_adr] * kRadToDeg);
   add("cycle_us", 1, cycle_us);
   cycle_index_.push_back(std::lround(t / control_period_));
