@@ -114,3 +114,21 @@ test('scrubbing the time slider moves the robot', async () => {
   assert.notEqual((await canvasPixels()).hash, pixelsBefore.hash);
   assert.deepEqual(problems, []);
 });
+
+test('play advances the time, pause holds it; a click in a plot moves the replay there', async () => {
+  await page.locator('#time').fill('1');
+  await page.locator('#play').click();
+  await page.waitForFunction(() => window.__report.time() > 1.2, null, { timeout: 10000 });
+  // While playing, the software renderer redraws slowly: skip the wait for a still frame.
+  await page.locator('#play').click({ force: true });
+  const paused = await page.evaluate(() => window.__report.time());
+  await page.waitForTimeout(300);
+  assert.equal(await page.evaluate(() => window.__report.time()), paused);
+
+  const plot = page.locator('.uplot .u-over').first();
+  const box = await plot.boundingBox();
+  await plot.click({ position: { x: 0.75 * box.width, y: 0.5 * box.height } });
+  const t = await page.evaluate(() => window.__report.time());
+  assert.ok(t > 1.8 && t < 2.7, `a click at 3/4 of the plot's width moved the replay to ${t.toFixed(2)} s`);
+  assert.deepEqual(problems, []);
+});
