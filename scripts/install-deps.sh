@@ -12,9 +12,14 @@ packages=(
   nlohmann-json3-dev              # summary.json, bench JSON
   libgtest-dev                    # tests
   libbenchmark-dev                # benchmarks
+  chromium                        # report.html's browser test (headless)
 )
+# node and npm build the report viewer (web/report); a node already there (with its npm) will do.
+if ! command -v node >/dev/null || ! command -v npm >/dev/null; then
+  packages+=(nodejs npm)
+fi
 if [ "${BIPED_WITH_REPORT_DEPS:-0}" = 1 ]; then
-  packages+=(ffmpeg chromium nodejs npm)
+  packages+=(ffmpeg)
 fi
 
 missing=()

@@ -37,7 +37,8 @@ int run_command(const std::string& scenario_path, const std::string& out_option,
                                        s["fall_reason"].get<std::string>())
                                           .c_str()
                                     : "no fall");
-  std::printf("results: %s/summary.json, %s/log.csv\n", out_dir.c_str(), out_dir.c_str());
+  std::printf("results: %s/summary.json, %s/log.csv, %s/report.html\n", out_dir.c_str(), out_dir.c_str(),
+              out_dir.c_str());
   return 0;
 }
 

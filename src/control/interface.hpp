@@ -35,6 +35,15 @@ struct WalkCommand {
   bool stop = false;   // come to a standstill with both feet side by side
 };
 
+// A footstep the current walking pattern is planned through (controller frame).
+struct PlannedStep {
+  Side side = Side::Left;
+  Eigen::Vector2d position = Eigen::Vector2d::Zero();  // ankle (foot frame origin) on the ground
+  double yaw = 0.0;
+  double touchdown = 0.0;  // [s] since the controller's reset
+};
+inline constexpr int kMaxPlannedSteps = 3;
+
 // What the controller reports about itself each cycle (for logs and for the caller's safety logic).
 struct ControllerStatus {
   const char* state = "init";   // FSM state name, e.g. "standing", "walking", "safe_stop"
@@ -46,6 +55,12 @@ struct ControllerStatus {
   bool command_saturated = false;                         // the walk command was clamped
   double contact_stiffness = 0.0;  // [N/m] C used by eq. (20): configured, or its on-line estimate (0: none)
   int steps_completed = 0;
+  std::array<PlannedStep, kMaxPlannedSteps> planned_steps;  // upcoming footsteps, the next first
+  int num_planned_steps = 0;
+  // The CoM as the controller estimates it (eq. 10's r_CoM), placed at the planned stance foot
+  // (controller frame); valid while the stabilizer uses the sensors.
+  Eigen::Vector2d com_estimated = Eigen::Vector2d::Zero();
+  bool com_estimate_valid = false;
 };
 
 class Controller {

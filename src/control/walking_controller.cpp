@@ -205,6 +205,7 @@ void WalkingController::com_error(const SensorData& sensors, const PatternSample
   const FootReference& foot = s.feet[index_of(stance)];
   const Eigen::Vector2d planned = to_heading * (s.com - foot.position).head<2>();
   const Eigen::Vector2d planned_rate = to_heading * (s.com_velocity - foot.velocity).head<2>();
+  status_.com_estimated = foot.position.head<2>() + to_heading.transpose() * com_estimate_;
   error = planned - com_estimate_;
   rate = planned_rate - com_rate_estimate_;
 }
@@ -280,6 +281,12 @@ void WalkingController::step(const SensorData& raw_sensors, const WalkCommand& c
   status_.desired_wrench = params_.stabilizer && use_sensors ? stabilizer_.desired() : sample_.contact_wrench;
   status_.contact_stiffness = params_.stabilizer ? stabilizer_.contact_stiffness() : 0.0;
   status_.state = name_of(fsm_.state());
+  status_.com_estimate_valid = params_.stabilizer && use_sensors;
+  status_.num_planned_steps = num_planned_;
+  for (int i = 0; i < num_planned_; ++i) {
+    const Footstep& f = planned_[i];
+    status_.planned_steps[i] = {f.side, f.position, f.yaw, f.touchdown};
+  }
 }
 
 }  // namespace biped

@@ -1,28 +1,31 @@
 #include "io/scenario_runner.hpp"
 
 #include <filesystem>
+#include <utility>
+#include <vector>
 
 #include "control/standing_controller.hpp"
 #include "io/output_files.hpp"
+#include "io/report.hpp"
 #include "io/run_recorder.hpp"
 #include "io/yaml_reader.hpp"
 
 namespace biped {
 namespace {
 
-// Forwards each record to two observers.
-class ObserverPair final : public RunObserver {
+// Forwards each record to each observer that is there.
+class Observers final : public RunObserver {
  public:
-  ObserverPair(RunObserver& a, RunObserver* b) : a_(a), b_(b) {}
+  explicit Observers(std::vector<RunObserver*> list) : list_(std::move(list)) {}
   void record(const Simulation& sim, const SensorData& s, const JointCommand& c, const ControllerStatus& st,
               double us) override {
-    a_.record(sim, s, c, st, us);
-    if (b_) b_->record(sim, s, c, st, us);
+    for (RunObserver* o : list_) {
+      if (o) o->record(sim, s, c, st, us);
+    }
   }
 
  private:
-  RunObserver& a_;
-  RunObserver* b_;
+  std::vector<RunObserver*> list_;
 };
 
 }  // namespace
@@ -60,14 +63,18 @@ ScenarioResult run_scenario(const Scenario& scenario, const RunConfig& config, c
   Simulation sim(config.sim, model);
   std::unique_ptr<Controller> controller = make_controller(config, model);
 
-  std::unique_ptr<AtomicOutputFile> log_file, summary_file;
+  std::unique_ptr<AtomicOutputFile> log_file, summary_file, report_file;
+  std::unique_ptr<ReportWriter> report;
   if (!out_dir.empty()) {
     prepare_output_directory(out_dir);
-    log_file = std::make_unique<AtomicOutputFile>((std::filesystem::path(out_dir) / "log.csv").string());
-    summary_file = std::make_unique<AtomicOutputFile>((std::filesystem::path(out_dir) / "summary.json").string());
+    const std::filesystem::path dir(out_dir);
+    log_file = std::make_unique<AtomicOutputFile>((dir / "log.csv").string());
+    summary_file = std::make_unique<AtomicOutputFile>((dir / "summary.json").string());
+    report_file = std::make_unique<AtomicOutputFile>((dir / "report.html").string());
+    report = std::make_unique<ReportWriter>(sim);
   }
   RunRecorder recorder(sim, log_file ? &log_file->stream() : nullptr);
-  ObserverPair observers(recorder, extra_observer);
+  Observers observers({&recorder, report.get(), extra_observer});
 
   RunOptions options;
   options.duration = scenario.duration;
@@ -79,8 +86,10 @@ ScenarioResult run_scenario(const Scenario& scenario, const RunConfig& config, c
   result.summary["controller"] = config.controller.type;
   if (summary_file) {
     summary_file->stream() << result.summary.dump(2) << '\n';
+    report->write_html(report_file->stream(), result.summary, result.run.cycle_us);
     log_file->commit();
     summary_file->commit();
+    report_file->commit();
   }
   return result;
 }

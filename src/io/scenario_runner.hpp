@@ -24,7 +24,7 @@ struct ScenarioResult {
   RunResult run;
 };
 
-// Runs the scenario. With a non-empty `out_dir`, writes summary.json and log.csv there, each whole
+// Runs the scenario. With a non-empty `out_dir`, writes summary.json, log.csv and report.html there, each whole
 // or not at all. Throws InputError / ModelError for bad input before any file is created.
 ScenarioResult run_scenario(const Scenario& scenario, const RunConfig& config, const std::string& out_dir,
                             RunObserver* extra_observer = nullptr);

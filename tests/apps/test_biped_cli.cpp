@@ -62,6 +62,7 @@ void expect_bad_input(const std::string& args, const std::string& must_mention, 
   EXPECT_NE(o.err.find(must_mention), std::string::npos) << o.err;
   EXPECT_FALSE(fs::exists(out_dir / "log.csv"));
   EXPECT_FALSE(fs::exists(out_dir / "summary.json"));
+  EXPECT_FALSE(fs::exists(out_dir / "report.html"));
 }
 
 const char* kShortStand = "name: short\nrobot: johnnie\nduration: 0.3\n";
@@ -113,7 +114,9 @@ TEST(BipedRun, WritesSummaryAndLogWithTheContractKeys) {
     EXPECT_NE(header.find(column), std::string::npos) << column;
   }
   EXPECT_EQ(lines(log), 1 + 30) << "0.3 s at 100 Hz";
-  EXPECT_EQ(std::distance(fs::directory_iterator(out), fs::directory_iterator()), 2) << "no temporary files left";
+  EXPECT_TRUE(fs::exists(out / "report.html"));
+  EXPECT_NE(o.out.find(out.string() + "/report.html"), std::string::npos) << o.out;
+  EXPECT_EQ(std::distance(fs::directory_iterator(out), fs::directory_iterator()), 3) << "no temporary files left";
 }
 
 // Removes the one wall-clock column (cycle_us) from every row.

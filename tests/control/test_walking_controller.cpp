@@ -106,6 +106,40 @@ TEST_P(WalkingControllerTest, StopCommandEndsStandingWithTheFeetSideBySide) {
   EXPECT_LT(s.com_velocity.norm(), 0.01);
 }
 
+// The status lists the plan's next footsteps (for reports): while walking three, the next first,
+// alternating feet; each step lands where the status said; standing again, none.
+TEST_P(WalkingControllerTest, StatusListsThePlannedFootstepsAhead) {
+  KinematicLoop loop(GetParam());
+  PlannedStep next;
+  int landed = 0;
+  for (int i = 0; i < 9000; ++i) {
+    WalkCommand command;
+    command.vx = 0.4;
+    command.omega = 0.1;
+    command.stop = i > 5000;
+    const int completed = loop.controller.status().steps_completed;
+    loop.cycle(i * 0.001, command);
+    const ControllerStatus& s = loop.controller.status();
+    if (s.steps_completed > completed) {
+      const Eigen::Vector3d& foot = loop.controller.pattern().feet[index_of(next.side)].position;
+      EXPECT_LT((foot.head<2>() - next.position).norm(), 1e-9) << "step " << s.steps_completed;
+      ++landed;
+    }
+    if (loop.controller.state() == WalkingState::Walking) {
+      ASSERT_EQ(s.num_planned_steps, kMaxPlannedSteps);
+      EXPECT_GT(s.planned_steps[0].touchdown, i * 0.001);
+      for (int k = 1; k < s.num_planned_steps; ++k) {
+        EXPECT_NE(s.planned_steps[k].side, s.planned_steps[k - 1].side);
+        EXPECT_GT(s.planned_steps[k].touchdown, s.planned_steps[k - 1].touchdown);
+      }
+    }
+    if (s.num_planned_steps > 0) next = s.planned_steps[0];
+  }
+  EXPECT_GT(landed, 5);
+  EXPECT_EQ(loop.controller.state(), WalkingState::Standing);
+  EXPECT_EQ(loop.controller.status().num_planned_steps, 0);
+}
+
 TEST_P(WalkingControllerTest, SaturatesInfeasibleCommandsAndSaysSo) {
   KinematicLoop loop(GetParam());
   WalkCommand fast;
