@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "control/contact_model.hpp"
 #include "math/rotations.hpp"
 
 namespace biped {
@@ -12,20 +13,9 @@ Eigen::Vector3d controlled(const Wrench& w) { return {w.force.z(), w.torque.x(),
 
 }  // namespace
 
-// eq. (11): point contacts at the four sole corners (sensor frame), each with a quarter of the
-// foot's stiffness C. A foot displacement δ = (z, φ_x, φ_y) moves corner (x, y) by w = z + y φ_x − x φ_y
-// and the ground pushes back with f = −C/4 · w, so (F_z, T_x, T_y) = −K δ with K = Σ C/4 g gᵀ,
-// g = (1, y, −x).
 Stabilizer::Stabilizer(const RobotModel& model, const StabilizerParams& params) : model_(model), params_(params) {
   for (Side side : kSides) {
-    const FootInfo& foot = model.foot(side);
-    Eigen::Matrix3d K = Eigen::Matrix3d::Zero();
-    for (double x : {foot.sole_x_min, foot.sole_x_max}) {
-      for (double y : {foot.sole_y_min, foot.sole_y_max}) {
-        const Eigen::Vector3d g(1.0, y, -x);
-        K += 0.25 * params.contact_stiffness * g * g.transpose();
-      }
-    }
+    const Eigen::Matrix3d K = point_contact_stiffness(model.foot(side), params.contact_stiffness);
     stiffness_[index_of(side)] = K;
     compliance_[index_of(side)] = K.inverse();
   }

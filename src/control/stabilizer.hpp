@@ -5,7 +5,7 @@
 //     relative to the stance foot (encoders and IMU, control/state_estimation);
 //   hybrid position/force control, eqs. (11)–(20): per foot, the normal force and the two contact-
 //     plane torques are tracked by modifying the foot's height and tilt, through the explicit
-//     point-contact model of eq. (11) (the four sole corners, stiffness C each quarter of the foot's).
+//     point-contact model of eq. (11) (control/contact_model: the four sole corners, stiffness C/4 each).
 // With the point-contact model the map S_λ∇_qλ(S̄_x∇_q x)^† of eq. (20) is, per foot, minus the
 // 3×3 contact stiffness K of (z, φ_x, φ_y) → (F_z, T_x, T_y); this implementation uses that small
 // matrix (docs/stabilizer.md). Feet without contact blend to position control (α_λ → 0), which
