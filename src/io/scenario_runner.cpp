@@ -1,28 +1,32 @@
 #include "io/scenario_runner.hpp"
 
 #include <filesystem>
+#include <utility>
+#include <vector>
 
 #include "control/standing_controller.hpp"
 #include "io/output_files.hpp"
 #include "io/run_recorder.hpp"
+#include "io/video_recorder.hpp"
 #include "io/yaml_reader.hpp"
 
 namespace biped {
 namespace {
 
-// Forwards each record to two observers.
-class ObserverPair final : public RunObserver {
+// Forwards the loop's calls to several observers.
+class Observers final : public RunObserver {
  public:
-  ObserverPair(RunObserver& a, RunObserver* b) : a_(a), b_(b) {}
+  explicit Observers(std::vector<RunObserver*> all) : all_(std::move(all)) {}
   void record(const Simulation& sim, const SensorData& s, const JointCommand& c, const ControllerStatus& st,
               double us) override {
-    a_.record(sim, s, c, st, us);
-    if (b_) b_->record(sim, s, c, st, us);
+    for (RunObserver* o : all_) o->record(sim, s, c, st, us);
+  }
+  void cycle_start(const Simulation& sim) override {
+    for (RunObserver* o : all_) o->cycle_start(sim);
   }
 
  private:
-  RunObserver& a_;
-  RunObserver* b_;
+  std::vector<RunObserver*> all_;
 };
 
 }  // namespace
@@ -54,11 +58,13 @@ void check_scenario_against_model(const Scenario& s, const RobotModel& model) {
 }
 
 ScenarioResult run_scenario(const Scenario& scenario, const RunConfig& config, const std::string& out_dir,
-                            RunObserver* extra_observer) {
+                            RunObserver* extra_observer, const VideoOptions* video) {
   const RobotModel model = load_controller_model(config);
   check_scenario_against_model(scenario, model);
   Simulation sim(config.sim, model);
   std::unique_ptr<Controller> controller = make_controller(config, model);
+  // First, so that a machine that cannot render fails before any output file exists.
+  std::unique_ptr<VideoRecorder> video_recorder = video ? std::make_unique<VideoRecorder>(sim, *video) : nullptr;
 
   std::unique_ptr<AtomicOutputFile> log_file, summary_file;
   if (!out_dir.empty()) {
@@ -67,7 +73,10 @@ ScenarioResult run_scenario(const Scenario& scenario, const RunConfig& config, c
     summary_file = std::make_unique<AtomicOutputFile>((std::filesystem::path(out_dir) / "summary.json").string());
   }
   RunRecorder recorder(sim, log_file ? &log_file->stream() : nullptr);
-  ObserverPair observers(recorder, extra_observer);
+  std::vector<RunObserver*> observer_list = {&recorder};
+  if (extra_observer) observer_list.push_back(extra_observer);
+  if (video_recorder) observer_list.push_back(video_recorder.get());
+  Observers observers(std::move(observer_list));
 
   RunOptions options;
   options.duration = scenario.duration;
@@ -77,6 +86,15 @@ ScenarioResult run_scenario(const Scenario& scenario, const RunConfig& config, c
   result.summary = recorder.summary(config.robot, scenario.name, result.run, controller->status());
   result.summary["seed"] = scenario.seed;
   result.summary["controller"] = config.controller.type;
+  if (video_recorder) {
+    video_recorder->commit();
+    result.summary["video"] = {{"file", video->path},
+                               {"frames", video_recorder->frames()},
+                               {"fps", video->fps},
+                               {"size", {video->width, video->height}},
+                               {"codec", video_recorder->codec()},
+                               {"render_s", video_recorder->render_seconds()}};
+  }
   if (summary_file) {
     summary_file->stream() << result.summary.dump(2) << '\n';
     log_file->commit();

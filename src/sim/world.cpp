@@ -55,7 +55,7 @@ std::string ground_xml(const WorldSpec& spec) {
   xml.precision(10);
   const double mu = spec.ground_friction;
   const std::string common = " contype=\"1\" conaffinity=\"2\" condim=\"3\" friction=\"" + std::to_string(mu) +
-                             " 0.005 0.0001\" rgba=\"0.55 0.6 0.65 1\"";
+                             " 0.005 0.0001\" material=\"ground\"";
   xml << "<light name=\"sun\" pos=\"0 0 6\" dir=\"0 0 -1\" directional=\"true\"/>\n";
   if (spec.terrain.empty()) {
     xml << "<geom name=\"ground\" type=\"plane\" size=\"0 0 1\"" << common << "/>\n";
@@ -108,6 +108,16 @@ mjModel* build_world(const WorldSpec& spec) {
   const auto end_of_world = xml.rfind("</worldbody>");
   if (end_of_world == std::string::npos) throw ModelError(spec.robot_mjcf + ": no <worldbody> element");
   xml.insert(end_of_world, ground_xml(spec));
+  // Looks only (videos, viewers): a checkered ground shows the robot's motion, a sky the horizon.
+  // A second <asset> element is valid MJCF, so the robot file keeps its own.
+  xml.insert(xml.rfind("<worldbody", end_of_world),
+             "<asset>\n"
+             "<texture name=\"sky\" type=\"skybox\" builtin=\"gradient\" rgb1=\"0.55 0.7 0.85\" rgb2=\"0.95 0.97 1\""
+             " width=\"64\" height=\"384\"/>\n"
+             "<texture name=\"checker\" type=\"2d\" builtin=\"checker\" rgb1=\"0.78 0.72 0.62\" rgb2=\"0.6 0.55 0.47\""
+             " width=\"256\" height=\"256\" mark=\"edge\" markrgb=\"0.45 0.42 0.36\"/>\n"
+             "<material name=\"ground\" texture=\"checker\" texrepeat=\"2 2\" texuniform=\"true\" reflectance=\"0.05\"/>\n"
+             "</asset>\n");
 
   // Compile from memory; the robot file needs no other files (no meshes, no includes).
   auto vfs = std::make_unique<mjVFS>();
