@@ -12,9 +12,12 @@ packages=(
   nlohmann-json3-dev              # summary.json, bench JSON
   libgtest-dev                    # tests
   libbenchmark-dev                # benchmarks
+  libegl-dev libgl-dev            # headless rendering for `biped run --video` (EGL, GL headers)
+  libegl-mesa0 libgl1-mesa-dri    # Mesa's EGL and its software renderer (no GPU, no display needed)
+  ffmpeg                          # encodes the video; its ffprobe checks it in the tests
 )
 if [ "${BIPED_WITH_REPORT_DEPS:-0}" = 1 ]; then
-  packages+=(ffmpeg chromium nodejs npm)
+  packages+=(chromium nodejs npm)
 fi
 
 missing=()
