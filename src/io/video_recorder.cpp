@@ -17,6 +17,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <algorithm>
 
 #include "io/yaml_reader.hpp"
@@ -125,7 +126,7 @@ struct VideoRecorder::Gl {
         reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(eglGetProcAddress("eglGetPlatformDisplayEXT"));
     if (get_platform_display) display = get_platform_display(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
     if (display == EGL_NO_DISPLAY) display = eglGetDisplay(EGL_DEFAULT_DISPLAY);
-    if (display == EGL_NO_DISPLAY) throw VideoError("--video: no EGL display (is libegl-mesa0 installed?)");
+    if (display == EGL_NO_DISPLAY) throw VideoError("--video: no headless OpenGL: no EGL display (needs Mesa's libegl-mesa0)");
     EGLint major = 0, minor = 0;
     if (!eglInitialize(display, &major, &minor)) {
       display = EGL_NO_DISPLAY;
@@ -230,9 +231,12 @@ void check_video_options(const VideoOptions& o) {
   if (ec || !fs::is_directory(dir)) {
     throw InputError("--video '" + o.path + "': cannot create the folder " + dir.string());
   }
-  if (access(dir.c_str(), W_OK) != 0) {
+  // Creating the file ffmpeg will write is the only test that also holds for root.
+  const fs::path probe = dir / ("." + path.filename().string() + ".tmp");
+  if (!std::ofstream(probe)) {
     throw InputError("--video '" + o.path + "': the folder " + dir.string() + " is not writable");
   }
+  fs::remove(probe, ec);
 }
 
 VideoRecorder::VideoRecorder(const Simulation& sim, const VideoOptions& options) : options_(options) {
