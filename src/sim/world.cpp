@@ -116,7 +116,7 @@ mjModel* build_world(const WorldSpec& spec) {
              " width=\"64\" height=\"384\"/>\n"
              "<texture name=\"checker\" type=\"2d\" builtin=\"checker\" rgb1=\"0.78 0.72 0.62\" rgb2=\"0.6 0.55 0.47\""
              " width=\"256\" height=\"256\" mark=\"edge\" markrgb=\"0.45 0.42 0.36\"/>\n"
-             "<material name=\"ground\" texture=\"checker\" texrepeat=\"2 2\" texuniform=\"true\" reflectance=\"0.05\"/>\n"
+             "<material name=\"ground\" texture=\"checker\" texrepeat=\"2 2\" texuniform=\"true\"/>\n"
              "</asset>\n");
 
   // Compile from memory; the robot file needs no other files (no meshes, no includes).
