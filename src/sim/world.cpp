@@ -17,6 +17,9 @@ constexpr double kTerrainHalfWidth = 20.0;   // [m] lateral extent of terrain bl
 constexpr double kTerrainStart = -20.0;      // [m] terrain blocks cover x from here ...
 constexpr double kTerrainEnd = 100.0;        // ... to here
 constexpr double kBlockDepth = 0.5;          // [m] thickness of terrain blocks below their surface
+// Multiply the ground's checker texture; explicit, or the robot file's default geom colour applies.
+constexpr const char* kGroundTint = " rgba=\"1 1 1 1\"";
+constexpr const char* kTerrainTint = " rgba=\"0.75 0.85 1 1\"";
 
 struct Segment {
   double x0, x1;  // along x
@@ -58,7 +61,7 @@ std::string ground_xml(const WorldSpec& spec) {
                              " 0.005 0.0001\" material=\"ground\"";
   xml << "<light name=\"sun\" pos=\"0 0 6\" dir=\"0 0 -1\" directional=\"true\"/>\n";
   if (spec.terrain.empty()) {
-    xml << "<geom name=\"ground\" type=\"plane\" size=\"0 0 1\"" << common << "/>\n";
+    xml << "<geom name=\"ground\" type=\"plane\" size=\"0 0 1\"" << common << kGroundTint << "/>\n";
     return xml.str();
   }
   int i = 0;
@@ -69,9 +72,13 @@ std::string ground_xml(const WorldSpec& spec) {
     // Box whose top face runs from (x0, z0) to (x1, z1).
     const double cx = 0.5 * (s.x0 + s.x1) + 0.5 * kBlockDepth * std::sin(pitch);
     const double cz = 0.5 * (s.z0 + s.z1) - 0.5 * kBlockDepth * std::cos(pitch);
-    xml << "<geom name=\"terrain_" << i++ << "\" type=\"box\" pos=\"" << cx << " 0 " << cz << "\" size=\""
+    const int k = i++;
+    xml << "<geom name=\"terrain_" << k << "\" type=\"box\" pos=\"" << cx << " 0 " << cz << "\" size=\""
         << 0.5 * length << " " << kTerrainHalfWidth << " " << 0.5 * kBlockDepth << "\" quat=\""
-        << std::cos(-0.5 * pitch) << " 0 " << std::sin(-0.5 * pitch) << " 0\"" << common << "/>\n";
+        << std::cos(-0.5 * pitch) << " 0 " << std::sin(-0.5 * pitch) << " 0\""
+        << common
+        // Alternate tints, so every step and slope edge shows in a video.
+        << (k % 2 ? kTerrainTint : kGroundTint) << "/>\n";
   }
   return xml.str();
 }
