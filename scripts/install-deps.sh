@@ -13,13 +13,13 @@ packages=(
   libgtest-dev                    # tests
   libbenchmark-dev                # benchmarks
   chromium                        # report.html's browser test (headless)
+  libegl-dev libgl-dev            # headless rendering for `biped run --video` (EGL, GL headers)
+  libegl-mesa0 libgl1-mesa-dri    # Mesa's EGL and its software renderer (no GPU, no display needed)
+  ffmpeg                          # encodes the video; its ffprobe checks it in the tests
 )
 # node and npm build the report viewer (web/report); a node already there (with its npm) will do.
 if ! command -v node >/dev/null || ! command -v npm >/dev/null; then
   packages+=(nodejs npm)
-fi
-if [ "${BIPED_WITH_REPORT_DEPS:-0}" = 1 ]; then
-  packages+=(ffmpeg)
 fi
 
 missing=()

@@ -1,5 +1,6 @@
 // The `biped` command line: run scenarios (and, as the project grows, benchmarks and experiments).
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <cstdio>
 #include <exception>
 #include <filesystem>
@@ -12,6 +13,7 @@
 #include "io/push_test.hpp"
 #include "io/robot_config.hpp"
 #include "io/step_tables.hpp"
+#include "io/video_recorder.hpp"
 #include "io/scenario.hpp"
 #include "io/scenario_runner.hpp"
 #include "io/speed_sweep.hpp"
@@ -23,12 +25,17 @@ constexpr int kExitBadInput = 2;
 constexpr int kExitInternal = 1;
 
 int run_command(const std::string& scenario_path, const std::string& out_option,
-                const std::vector<std::string>& overrides) {
+                const std::vector<std::string>& overrides, biped::VideoOptions video, const std::string& video_size) {
+  if (!video.path.empty()) {
+    if (!video_size.empty()) biped::parse_video_size(video_size, video);
+    biped::check_video_options(video);
+  }
   const biped::Scenario scenario = biped::load_scenario(scenario_path, overrides);
   const biped::RunConfig config = biped::make_run_config(scenario);
   const std::string out_dir =
       out_option.empty() ? (std::filesystem::path("out") / scenario.name).string() : out_option;
-  const biped::ScenarioResult result = biped::run_scenario(scenario, config, out_dir);
+  const biped::ScenarioResult result =
+      biped::run_scenario(scenario, config, out_dir, nullptr, video.path.empty() ? nullptr : &video);
   const auto& s = result.summary;
   std::printf("%s (%s): %.1f s simulated in %.2f s (%.1fx real time), %s\n", scenario.name.c_str(),
               config.robot.c_str(), s["sim_time_s"].get<double>(), s["wall_time_s"].get<double>(),
@@ -39,6 +46,12 @@ int run_command(const std::string& scenario_path, const std::string& out_option,
                                     : "no fall");
   std::printf("results: %s/summary.json, %s/log.csv, %s/report.html\n", out_dir.c_str(), out_dir.c_str(),
               out_dir.c_str());
+  if (s.contains("video")) {
+    const auto& v = s["video"];
+    std::printf("video: %s (%d frames, %.1f s rendering, %.0f ms a frame)\n", video.path.c_str(),
+                v["frames"].get<int>(), v["render_s"].get<double>(),
+                1e3 * v["render_s"].get<double>() / std::max(1, v["frames"].get<int>()));
+  }
   return 0;
 }
 
@@ -145,6 +158,11 @@ int main(int argc, char** argv) {
   run->add_option("--out", out_dir, "Output folder (default: out/<scenario name>)");
   run->add_option("--set", overrides, "Override a scenario key, e.g. --set controller.stabilizer=false")
       ->type_name("KEY=VALUE");
+  biped::VideoOptions video;
+  std::string video_size;
+  run->add_option("--video", video.path, "Also render the run offscreen to this .mp4 (needs ffmpeg)")->type_name("FILE.mp4");
+  run->add_option("--video-fps", video.fps, "Video frames per second of simulated time")->capture_default_str();
+  run->add_option("--video-size", video_size, "Video size in pixels (default 640x480)")->type_name("WxH");
 
   std::string robot, table_out;
   CLI::App* tables = app.add_subcommand("tables", "Generate the off-line step table of a robot (config/tables/NAME.csv)");
@@ -185,7 +203,7 @@ int main(int argc, char** argv) {
   }
 
   try {
-    if (*run) return run_command(scenario_path, out_dir, overrides);
+    if (*run) return run_command(scenario_path, out_dir, overrides, video, video_size);
     if (*tables) return tables_command(robot, table_out);
     if (*bench) return bench_command(bench_robot, bench_json, bench_duration);
     if (*push) return push_test_command(push_scenario, push_direction, push_overrides);
@@ -196,6 +214,9 @@ int main(int argc, char** argv) {
   } catch (const biped::ModelError& e) {
     std::cerr << "error: " << e.what() << '\n';
     return kExitBadInput;
+  } catch (const biped::VideoError& e) {
+    std::cerr << "error: " << e.what() << '\n';
+    return kExitInternal;
   } catch (const std::exception& e) {
     std::cerr << "internal error: " << e.what() << '\n';
     return kExitInternal;

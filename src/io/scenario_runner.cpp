@@ -8,24 +8,30 @@
 #include "io/output_files.hpp"
 #include "io/report.hpp"
 #include "io/run_recorder.hpp"
+#include "io/video_recorder.hpp"
 #include "io/yaml_reader.hpp"
 
 namespace biped {
 namespace {
 
-// Forwards each record to each observer that is there.
+// Forwards the loop's calls to several observers.
 class Observers final : public RunObserver {
  public:
-  explicit Observers(std::vector<RunObserver*> list) : list_(std::move(list)) {}
+  explicit Observers(std::vector<RunObserver*> all) : all_(std::move(all)) {}
   void record(const Simulation& sim, const SensorData& s, const JointCommand& c, const ControllerStatus& st,
               double us) override {
-    for (RunObserver* o : list_) {
+    for (RunObserver* o : all_) {
       if (o) o->record(sim, s, c, st, us);
+    }
+  }
+  void cycle_start(const Simulation& sim) override {
+    for (RunObserver* o : all_) {
+      if (o) o->cycle_start(sim);
     }
   }
 
  private:
-  std::vector<RunObserver*> list_;
+  std::vector<RunObserver*> all_;
 };
 
 }  // namespace
@@ -57,11 +63,13 @@ void check_scenario_against_model(const Scenario& s, const RobotModel& model) {
 }
 
 ScenarioResult run_scenario(const Scenario& scenario, const RunConfig& config, const std::string& out_dir,
-                            RunObserver* extra_observer) {
+                            RunObserver* extra_observer, const VideoOptions* video) {
   const RobotModel model = load_controller_model(config);
   check_scenario_against_model(scenario, model);
   Simulation sim(config.sim, model);
   std::unique_ptr<Controller> controller = make_controller(config, model);
+  // First, so that a machine that cannot render fails before any output file exists.
+  std::unique_ptr<VideoRecorder> video_recorder = video ? std::make_unique<VideoRecorder>(sim, *video) : nullptr;
 
   std::unique_ptr<AtomicOutputFile> log_file, summary_file, report_file;
   std::unique_ptr<ReportWriter> report;
@@ -74,7 +82,7 @@ ScenarioResult run_scenario(const Scenario& scenario, const RunConfig& config, c
     report = std::make_unique<ReportWriter>(sim);
   }
   RunRecorder recorder(sim, log_file ? &log_file->stream() : nullptr);
-  Observers observers({&recorder, report.get(), extra_observer});
+  Observers observers({&recorder, report.get(), extra_observer, video_recorder.get()});
 
   RunOptions options;
   options.duration = scenario.duration;
@@ -84,6 +92,15 @@ ScenarioResult run_scenario(const Scenario& scenario, const RunConfig& config, c
   result.summary = recorder.summary(config.robot, scenario.name, result.run, controller->status());
   result.summary["seed"] = scenario.seed;
   result.summary["controller"] = config.controller.type;
+  if (video_recorder) {
+    video_recorder->commit();
+    result.summary["video"] = {{"file", video->path},
+                               {"frames", video_recorder->frames()},
+                               {"fps", video->fps},
+                               {"size", {video->width, video->height}},
+                               {"codec", video_recorder->codec()},
+                               {"render_s", video_recorder->render_seconds()}};
+  }
   if (summary_file) {
     summary_file->stream() << result.summary.dump(2) << '\n';
     report->write_html(report_file->stream(), result.summary, result.run.cycle_us);

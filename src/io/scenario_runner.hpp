@@ -8,6 +8,7 @@
 #include "control/interface.hpp"
 #include "io/robot_config.hpp"
 #include "io/scenario.hpp"
+#include "io/video_recorder.hpp"
 #include "sim/closed_loop.hpp"
 
 namespace biped {
@@ -24,9 +25,11 @@ struct ScenarioResult {
   RunResult run;
 };
 
-// Runs the scenario. With a non-empty `out_dir`, writes summary.json, log.csv and report.html there, each whole
-// or not at all. Throws InputError / ModelError for bad input before any file is created.
+// Runs the scenario. With a non-empty `out_dir`, writes summary.json, log.csv and report.html there,
+// each whole or not at all; with `video`, also renders the run to that .mp4 (whole or not at all; the
+// summary then has a "video" entry). Throws InputError / ModelError for bad input and VideoError when
+// the video cannot be made, before anything is simulated and before any file is created.
 ScenarioResult run_scenario(const Scenario& scenario, const RunConfig& config, const std::string& out_dir,
-                            RunObserver* extra_observer = nullptr);
+                            RunObserver* extra_observer = nullptr, const VideoOptions* video = nullptr);
 
 }  // namespace biped

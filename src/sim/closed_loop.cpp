@@ -26,6 +26,7 @@ RunResult run_closed_loop(Simulation& sim, Controller& controller, const std::ve
   const auto wall_start = Clock::now();
   for (long cycle = 0; cycle < cycles; ++cycle) {
     const double t = sim.time();
+    if (observer) observer->cycle_start(sim);
     while (next_command < commands.size() && commands[next_command].t <= t + 1e-9) {
       command = commands[next_command++].command;
     }

@@ -14,12 +14,14 @@ struct TimedCommand {
   WalkCommand command;
 };
 
-// Receives the loop's state at the logging rate.
+// Receives the loop's state at the logging rate (record) and, for observers that sample at a
+// rate of their own such as a video, at the start of every control cycle (cycle_start).
 class RunObserver {
  public:
   virtual ~RunObserver() = default;
   virtual void record(const Simulation& sim, const SensorData& sensors, const JointCommand& setpoints,
                       const ControllerStatus& status, double cycle_us) = 0;
+  virtual void cycle_start(const Simulation& /*sim*/) {}
 };
 
 struct RunResult {

@@ -17,6 +17,9 @@ constexpr double kTerrainHalfWidth = 20.0;   // [m] lateral extent of terrain bl
 constexpr double kTerrainStart = -20.0;      // [m] terrain blocks cover x from here ...
 constexpr double kTerrainEnd = 100.0;        // ... to here
 constexpr double kBlockDepth = 0.5;          // [m] thickness of terrain blocks below their surface
+// Multiply the ground's checker texture; explicit, or the robot file's default geom colour applies.
+constexpr const char* kGroundTint = " rgba=\"1 1 1 1\"";
+constexpr const char* kTerrainTint = " rgba=\"0.75 0.85 1 1\"";
 
 struct Segment {
   double x0, x1;  // along x
@@ -55,10 +58,10 @@ std::string ground_xml(const WorldSpec& spec) {
   xml.precision(10);
   const double mu = spec.ground_friction;
   const std::string common = " contype=\"1\" conaffinity=\"2\" condim=\"3\" friction=\"" + std::to_string(mu) +
-                             " 0.005 0.0001\" rgba=\"0.55 0.6 0.65 1\"";
+                             " 0.005 0.0001\" material=\"ground\"";
   xml << "<light name=\"sun\" pos=\"0 0 6\" dir=\"0 0 -1\" directional=\"true\"/>\n";
   if (spec.terrain.empty()) {
-    xml << "<geom name=\"ground\" type=\"plane\" size=\"0 0 1\"" << common << "/>\n";
+    xml << "<geom name=\"ground\" type=\"plane\" size=\"0 0 1\"" << common << kGroundTint << "/>\n";
     return xml.str();
   }
   int i = 0;
@@ -69,9 +72,13 @@ std::string ground_xml(const WorldSpec& spec) {
     // Box whose top face runs from (x0, z0) to (x1, z1).
     const double cx = 0.5 * (s.x0 + s.x1) + 0.5 * kBlockDepth * std::sin(pitch);
     const double cz = 0.5 * (s.z0 + s.z1) - 0.5 * kBlockDepth * std::cos(pitch);
-    xml << "<geom name=\"terrain_" << i++ << "\" type=\"box\" pos=\"" << cx << " 0 " << cz << "\" size=\""
+    const int k = i++;
+    xml << "<geom name=\"terrain_" << k << "\" type=\"box\" pos=\"" << cx << " 0 " << cz << "\" size=\""
         << 0.5 * length << " " << kTerrainHalfWidth << " " << 0.5 * kBlockDepth << "\" quat=\""
-        << std::cos(-0.5 * pitch) << " 0 " << std::sin(-0.5 * pitch) << " 0\"" << common << "/>\n";
+        << std::cos(-0.5 * pitch) << " 0 " << std::sin(-0.5 * pitch) << " 0\""
+        << common
+        // Alternate tints, so every step and slope edge shows in a video.
+        << (k % 2 ? kTerrainTint : kGroundTint) << "/>\n";
   }
   return xml.str();
 }
@@ -108,6 +115,16 @@ mjModel* build_world(const WorldSpec& spec) {
   const auto end_of_world = xml.rfind("</worldbody>");
   if (end_of_world == std::string::npos) throw ModelError(spec.robot_mjcf + ": no <worldbody> element");
   xml.insert(end_of_world, ground_xml(spec));
+  // Looks only (videos, viewers): a checkered ground shows the robot's motion, a sky the horizon.
+  // A second <asset> element is valid MJCF, so the robot file keeps its own.
+  xml.insert(xml.rfind("<worldbody", end_of_world),
+             "<asset>\n"
+             "<texture name=\"sky\" type=\"skybox\" builtin=\"gradient\" rgb1=\"0.55 0.7 0.85\" rgb2=\"0.95 0.97 1\""
+             " width=\"64\" height=\"384\"/>\n"
+             "<texture name=\"checker\" type=\"2d\" builtin=\"checker\" rgb1=\"0.78 0.72 0.62\" rgb2=\"0.6 0.55 0.47\""
+             " width=\"256\" height=\"256\" mark=\"edge\" markrgb=\"0.45 0.42 0.36\"/>\n"
+             "<material name=\"ground\" texture=\"checker\" texrepeat=\"2 2\" texuniform=\"true\"/>\n"
+             "</asset>\n");
 
   // Compile from memory; the robot file needs no other files (no meshes, no includes).
   auto vfs = std::make_unique<mjVFS>();

@@ -119,6 +119,25 @@ TEST(BipedRun, WritesSummaryAndLogWithTheContractKeys) {
   EXPECT_EQ(std::distance(fs::directory_iterator(out), fs::directory_iterator()), 3) << "no temporary files left";
 }
 
+TEST(BipedRun, VideoProblemsFailBeforeSimulatingWithOneLineAndNoFiles) {
+  const fs::path out = work_dir() / "video-out";
+  const std::string good = scenario("good", kShortStand).string() + " --out " + out.string();
+  expect_bad_input("run " + good + " --video " + (out / "run.avi").string(), "--video", out);
+  expect_bad_input("run " + good + " --video " + (out / "run.mp4").string() + " --video-size 641x480", "--video-size", out);
+  std::ofstream(work_dir() / "a-file") << "x";
+  expect_bad_input("run " + good + " --video " + (work_dir() / "a-file" / "run.mp4").string(), "--video", out);
+  // A machine without ffmpeg: an internal error (status 1), still one line and no files.
+  const std::string cmd = "env PATH=/nonexistent " + std::string(BIPED_BINARY) + " run " + good + " --video " +
+                          (out / "run.mp4").string() + " 2>" + (work_dir() / "stderr.txt").string();
+  const int raw = std::system(cmd.c_str());
+  EXPECT_EQ(WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, 1);
+  const std::string err = slurp(work_dir() / "stderr.txt");
+  EXPECT_EQ(lines(err), 1) << err;
+  EXPECT_NE(err.find("ffmpeg"), std::string::npos) << err;
+  EXPECT_FALSE(fs::exists(out / "run.mp4"));
+  EXPECT_FALSE(fs::exists(out / "log.csv"));
+}
+
 // Removes the one wall-clock column (cycle_us) from every row.
 std::string without_timing(const std::string& csv) {
   std::stringstream in(csv), out;
