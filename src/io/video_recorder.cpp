@@ -10,6 +10,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <chrono>
 #include <cmath>
@@ -18,7 +19,6 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <algorithm>
 
 #include "io/yaml_reader.hpp"
 #include "sim/simulation.hpp"
@@ -82,10 +82,24 @@ struct VideoRecorder::Gl {
   Gl(const mjModel* sim_model, const VideoOptions& o) {
     try {
       make_egl_context();
+      make_renderer(sim_model, o);
     } catch (...) {
-      release_egl();
+      release();
       throw;
     }
+    mjv_defaultOption(&option);
+    mjv_defaultCamera(&camera);
+    camera.type = mjCAMERA_FREE;
+    camera.azimuth = kCameraAzimuthDeg;
+    camera.elevation = kCameraElevationDeg;
+    camera.distance = kCameraDistance;
+    tracked_body = std::max(0, mj_name2id(model, mjOBJ_BODY, "upper_body"));
+    bottom_up.resize(static_cast<std::size_t>(3 * o.width * o.height));
+  }
+
+  ~Gl() { release(); }
+
+  void make_renderer(const mjModel* sim_model, const VideoOptions& o) {
     model = mj_copyModel(nullptr, sim_model);
     model->vis.global.offwidth = o.width;
     model->vis.global.offheight = o.height;
@@ -104,21 +118,16 @@ struct VideoRecorder::Gl {
       throw VideoError("--video: the OpenGL context cannot hold a " + std::to_string(o.width) + "x" +
                        std::to_string(o.height) + " offscreen buffer");
     }
-    mjv_defaultOption(&option);
-    mjv_defaultCamera(&camera);
-    camera.type = mjCAMERA_FREE;
-    camera.azimuth = kCameraAzimuthDeg;
-    camera.elevation = kCameraElevationDeg;
-    camera.distance = kCameraDistance;
-    tracked_body = std::max(0, mj_name2id(model, mjOBJ_BODY, "upper_body"));
-    bottom_up.resize(static_cast<std::size_t>(3 * o.width * o.height));
   }
 
-  ~Gl() {
+  void release() {
     if (context_made) mjr_freeContext(&context_mj);
     if (scene_made) mjv_freeScene(&scene);
     if (data) mj_deleteData(data);
     if (model) mj_deleteModel(model);
+    context_made = scene_made = false;
+    data = nullptr;
+    model = nullptr;
     release_egl();
   }
 
