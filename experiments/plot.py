@@ -4,7 +4,7 @@
 Usage (system python, /usr/bin/python3, with python3-matplotlib and python3-yaml):
   plot.py fig6        RUN_DIR SCENARIO.yaml OUT.(png|svg)
   plot.py fig7        RUN_DIR SCENARIO.yaml OUT.(png|svg)
-  plot.py disturbance ON_DIR OFF_DIR SCENARIO.yaml OUT.(png|svg)
+  plot.py disturbance ON_DIR OFF_DIR SCENARIO.yaml OUT.(png|svg) [OFF_NO_PUSH_DIR]
 
 Everything drawn comes from the run directories and the scenario file; nothing is hard-coded.
 Exit status 1 (with a message) when an input is missing or malformed.
@@ -94,11 +94,11 @@ class Run:
     def tilt_text(self):
         tilt = self.summary["upper_body_tilt_deg"]
         s = (f"RMS φx {tilt['rms_x']:.2f}°, φy {tilt['rms_y']:.2f}°, max tilt {tilt['max']:.1f}°; "
-             f"{self.summary['distance_m']:.1f} m, {self.summary['steps']} steps; ")
+             f"{self.summary['distance_m']:.1f} m, {self.summary['steps']} steps;\n")
         if self.fell:
             rx, ry = self.rms_before_fall()
-            s += (f"FELL at {self.fall_time:.2f} s ({self.summary.get('fall_reason', '')});\n"
-                  f"until {PRE_FALL:.0f} s before the fall, while walking: RMS φx {rx:.2f}°, φy {ry:.2f}°")
+            s += (f"FELL at {self.fall_time:.2f} s ({self.summary.get('fall_reason', '')}); \n"
+                  f"until {PRE_FALL:.0f} s before it, walking: RMS φx {rx:.2f}°, φy {ry:.2f}°")
         else:
             s += "no fall"
         return s
@@ -309,25 +309,30 @@ def fig7(run_dir, scenario_path, out):
     save(fig, out)
 
 
-def disturbance(on_dir, off_dir, scenario_path, out):
+def disturbance(on_dir, off_dir, scenario_path, out, ref_dir=None):
     on, off, scen = Run(on_dir), Run(off_dir), load_scenario(scenario_path)
+    ref = Run(ref_dir) if ref_dir else None  # stabilizer off, no pushes: when it falls anyway
     pushes = pushes_of(scen)
     duration = float(scen["duration"])
     fig, axes = plt.subplots(2, 2, figsize=(11, 6.5), sharex=True, gridspec_kw={"height_ratios": [1.4, 1]})
-    # The same tilt scale on both sides: wide enough for the stabilized run, the unstabilized one
-    # may leave it on its way down (the fall line marks where).
-    lim = max(3.0, 1.3 * float(np.max(np.abs(np.concatenate([on.phi_x_deg, on.phi_y_deg])))))
-    off_pre = off.t < (off.fall_time if off.fell else duration) - 0.3
-    if off_pre.any():
-        lim = max(lim, 1.1 * float(np.max(np.abs(np.concatenate([off.phi_x_deg[off_pre], off.phi_y_deg[off_pre]])))))
-    lim = min(lim, 20.0)
+    # The same tilt scale on both sides, from the stabilized run; the unstabilized one leaves it on
+    # its way down (the fall line marks where).
+    lim = min(20.0, max(3.0, 1.5 * float(np.max(np.abs(np.concatenate([on.phi_x_deg, on.phi_y_deg]))))))
     zmin = min(on.base_z.min(), off.base_z.min())
     zmax = max(on.base_z.max(), off.base_z.max())
     for col, (run, name) in enumerate([(on, "stabilizer on"), (off, "stabilizer off")]):
         a, b = axes[0, col], axes[1, col]
         shade_support(a, run)
         plot_tilt(a, run, lw=0.8)
+        if col == 1 and ref is not None:
+            a.plot(ref.t, ref.phi_y_deg, color="#999999", lw=0.8, ls=":", zorder=2,
+                   label="φy without pushes" + (f" (fall {ref.fall_time:.2f} s)" if ref.fell else ""))
+            b.plot(ref.t, ref.base_z, color="#999999", lw=1.0, ls=":", label="without pushes")
+            if ref.fell:
+                for ax in (a, b):
+                    ax.axvline(ref.fall_time, color="#999999", lw=1.2, ls="--")
         b.plot(run.t, run.base_z, color="k", lw=1.0, label="pelvis height")
+        b.legend(loc="lower left", fontsize=6.5)
         b.set_ylabel("pelvis height [m]")
         b.set_xlabel("t [s]")
         b.grid(True, lw=0.3, alpha=0.6)
@@ -357,7 +362,7 @@ def main(argv):
     cmd, args = argv[1], argv[2:]
     if cmd in ("fig6", "fig7") and len(args) == 3:
         (fig6 if cmd == "fig6" else fig7)(*args)
-    elif cmd == "disturbance" and len(args) == 4:
+    elif cmd == "disturbance" and len(args) in (4, 5):
         disturbance(*args)
     else:
         die(f"bad arguments: {' '.join(argv[1:])}\n{usage}")
