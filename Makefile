@@ -3,7 +3,7 @@ BUILD_DIR ?= build
 JOBS      ?= 2
 SCENARIO  ?= config/scenarios/lola-walk.yaml
 
-.PHONY: all deps configure build test demo bench clean
+.PHONY: all deps configure build test demo bench experiments clean
 
 all: build
 
@@ -26,6 +26,11 @@ bench: build
 	@$(BUILD_DIR)/bench/biped_benchmarks --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
 	@$(BUILD_DIR)/biped bench --robot lola
 	@$(BUILD_DIR)/biped bench --robot johnnie
+
+# The paper's experiments (experiments/README.md): runs into out/experiments/, figures into docs/figures/.
+experiments: build
+	@scripts/install-experiment-deps.sh
+	@BIPED=$(BUILD_DIR)/biped experiments/run.sh
 
 clean:
 	rm -rf $(BUILD_DIR)

@@ -1,0 +1,40 @@
+#!/usr/bin/env bash
+# The experiment plots work on a short run: a 2 s walk (pushed once) through `biped run`, then every
+# plot command of experiments/plot.py on it; each figure must exist and be more than a blank canvas.
+# Skipped (exit 77) when /usr/bin/python3 has no matplotlib (scripts/install-experiment-deps.sh,
+# which `make experiments` runs, installs it).
+# Usage: test_plot.sh BIPED_BINARY SOURCE_DIR
+set -euo pipefail
+biped=$1 src=$2
+export PYTHONDONTWRITEBYTECODE=1
+if ! /usr/bin/python3 -c 'import matplotlib, yaml' 2>/dev/null; then
+  echo "SKIP: /usr/bin/python3 lacks matplotlib/yaml (scripts/install-experiment-deps.sh)"; exit 77
+fi
+tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
+cat > "$tmp/short.yaml" <<'YAML'
+name: plot-test
+robot: lola
+duration: 2.5
+seed: 1
+commands:
+  - {t: 0.0, vx: 0.0}
+  - {t: 0.5, vx: 0.3}
+disturbances:
+  - {type: push, t: 1.5, body: upper_body, force: [0, 20, 0], duration: 0.1}
+YAML
+"$biped" run "$tmp/short.yaml" --out "$tmp/on" > /dev/null
+"$biped" run "$tmp/short.yaml" --out "$tmp/off" --set controller.stabilizer=false > /dev/null
+plot="/usr/bin/python3 $src/experiments/plot.py"
+$plot fig6 "$tmp/on" "$tmp/short.yaml" "$tmp/fig6.png"
+$plot fig7 "$tmp/on" "$tmp/short.yaml" "$tmp/fig7.svg"
+$plot disturbance "$tmp/on" "$tmp/off" "$tmp/short.yaml" "$tmp/dist.png" "$tmp/off"
+for f in fig6.png fig7.svg dist.png; do
+  size=$(stat -c %s "$tmp/$f")
+  [ "$size" -gt 20000 ] || { echo "FAIL: $f only $size bytes"; exit 1; }
+done
+head -c 8 "$tmp/fig6.png" | od -An -tx1 | grep -q '89 50 4e 47' || { echo "FAIL: fig6.png is not a PNG"; exit 1; }
+grep -q 'φx' "$tmp/fig7.svg" || { echo "FAIL: fig7.svg has no φx legend"; exit 1; }
+# A bad argument list is an error, not a silent success.
+if $plot fig6 "$tmp/on" 2>/dev/null; then echo "FAIL: plot.py accepted missing arguments"; exit 1; fi
+if $plot fig6 "$tmp/missing" "$tmp/short.yaml" "$tmp/x.png" 2>/dev/null; then echo "FAIL: plot.py accepted a missing run"; exit 1; fi
+echo "OK"
