@@ -5,6 +5,9 @@ Usage (system python, /usr/bin/python3, with python3-matplotlib and python3-yaml
   plot.py fig6        RUN_DIR SCENARIO.yaml OUT.(png|svg)
   plot.py fig7        RUN_DIR SCENARIO.yaml OUT.(png|svg)
   plot.py disturbance ON_DIR OFF_DIR SCENARIO.yaml OUT.(png|svg) [OFF_NO_PUSH_DIR]
+  plot.py tuning eq10|force SCENARIO.yaml OUT.(png|svg) GAIN=VALUE:RUN_DIR...
+      one row per gain (controller.stabilization.GAIN), one line per value; eq10: the upper-body
+      angle after each push of the scenario; force: desired against measured contact wrench
 
 Everything drawn comes from the run directories and the scenario file; nothing is hard-coded.
 Exit status 1 (with a message) when an input is missing or malformed.
@@ -43,7 +46,9 @@ class Run:
     """One `biped run` output directory."""
 
     NUMERIC = ["t", "base_x", "base_y", "base_z", "phi_x_deg", "phi_y_deg",
-               "left_Fz_des", "right_Fz_des", "left_Fz", "right_Fz", "cmd_saturated", "steps_completed"]
+               "left_Fz_des", "right_Fz_des", "left_Fz", "right_Fz", "left_Ty_des", "right_Ty_des",
+               "left_Ty", "right_Ty", "left_Tx_des", "right_Tx_des", "left_Tx", "right_Tx",
+               "cmd_saturated", "steps_completed"]
 
     def __init__(self, run_dir):
         self.dir = run_dir
@@ -355,6 +360,107 @@ def disturbance(on_dir, off_dir, scenario_path, out, ref_dir=None):
     save(fig, out)
 
 
+def wrench_error_rms(run, component, t0):
+    """RMS over both feet of measured minus desired `component` (Fz, Tx, Ty) from t0 on, while
+    walking and before any fall."""
+    keep = run.before_fall() & (run.t >= t0) & np.array([s == "walking" for s in run.state])
+    if not keep.any():
+        return float("nan")
+    err = np.concatenate([getattr(run, f"{side}_{component}")[keep] - getattr(run, f"{side}_{component}_des")[keep]
+                          for side in ("left", "right")])
+    return float(np.sqrt(np.mean(err ** 2)))
+
+
+def stabilization_defaults(scenario):
+    """controller.stabilization of the scenario's robot parameter file (the values a sweep varies)."""
+    path = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "config", "robots",
+                        f"{scenario.get('robot', '')}.yaml")
+    if not os.path.isfile(path):
+        die(f"{path}: missing (robot of the scenario)")
+    with open(path) as fh:
+        return (yaml.safe_load(fh).get("controller") or {}).get("stabilization") or {}
+
+
+def parse_sweep(specs):
+    """[(gain, [(value, Run)])] in command-line order from GAIN=VALUE:RUN_DIR arguments."""
+    rows = {}
+    for spec in specs:
+        if "=" not in spec or ":" not in spec.split("=", 1)[1]:
+            die(f"bad sweep entry '{spec}' (GAIN=VALUE:RUN_DIR)")
+        gain, rest = spec.split("=", 1)
+        value, run_dir = rest.split(":", 1)
+        rows.setdefault(gain, []).append((float(value), Run(run_dir)))
+    if not rows:
+        die("tuning: no GAIN=VALUE:RUN_DIR entries")
+    return list(rows.items())
+
+
+def tuning(kind, scenario_path, out, *specs):
+    if kind not in ("eq10", "force"):
+        die(f"tuning: unknown kind '{kind}' (eq10, force)")
+    scen = load_scenario(scenario_path)
+    defaults = stabilization_defaults(scen)
+    rows = parse_sweep(specs)
+    pushes = pushes_of(scen)
+    if kind == "eq10" and len(pushes) < 2:
+        die(f"{scenario_path}: tuning eq10 needs two pushes (lateral, then sagittal)")
+    fig, axes = plt.subplots(len(rows), 2, figsize=(11, 2.3 * len(rows) + 0.6), squeeze=False)
+    colors = plt.rcParams["axes.prop_cycle"].by_key()["color"]
+    for r, (gain, runs) in enumerate(rows):
+        for k, (value, run) in enumerate(runs):
+            color = colors[k % len(colors)]
+            label = f"{gain} = {value:g}" + (" (default)" if float(defaults.get(gain, float("nan"))) == value else "")
+            if run.fell:
+                label += f", FELL at {run.fall_time:.1f} s"
+            if kind == "eq10":
+                for c, ((tp, d, _), angle) in enumerate(zip(pushes[:2], ("phi_y_deg", "phi_x_deg"))):
+                    sel = (run.t >= tp - 0.5) & (run.t <= tp + 4.0)
+                    if run.fell:
+                        sel &= run.t <= run.fall_time
+                    text = label
+                    if not run.fell or run.fall_time > tp + 4.0:  # the peak means nothing in a fall
+                        text += f"; peak {np.max(np.abs(getattr(run, angle)[sel & (run.t >= tp)])):.1f}°"
+                    axes[r][c].plot(run.t[sel], getattr(run, angle)[sel], color=color, lw=1.0, label=text)
+            else:
+                t0, t1 = steady_window(run, 2.0)
+                sel = (run.t >= t0) & (run.t <= t1)
+                label += f"; RMS error Fz {wrench_error_rms(run, 'Fz', 3.0):.0f} N, Ty {wrench_error_rms(run, 'Ty', 3.0):.1f} N·m"
+                for c, comp in enumerate(("Fz", "Ty")):
+                    axes[r][c].plot(run.t[sel], getattr(run, f"left_{comp}")[sel], color=color, lw=1.1,
+                                    label=label if c == 0 else None)
+                    axes[r][c].plot(run.t[sel], getattr(run, f"left_{comp}_des")[sel], color=color, lw=0.8, ls="--")
+        for c in range(2):
+            ax = axes[r][c]
+            ax.grid(True, lw=0.3, alpha=0.6)
+            if kind == "eq10":
+                tp, d, f = pushes[c]
+                ax.axvspan(tp, tp + d, color="#ff7f0e", alpha=0.6, lw=0)
+                ax.set_ylabel(("φy (lateral)" if c == 0 else "φx (sagittal)") + " [deg]")
+                ax.set_title(f"push {c + 1}: {push_label(f, d)}", fontsize=8)
+                lo, hi = ax.get_ylim()
+                ax.set_ylim(max(lo, -8.0), min(hi, 8.0))
+                ax.legend(loc="upper right", fontsize=6.5)
+            else:
+                ax.set_ylabel("left foot " + ("Fz [N]" if c == 0 else "Ty [N·m]"))
+                ax.set_title("left foot: measured (solid) and desired λ_d (dashed)", fontsize=8)
+                if c == 0:
+                    ax.legend(loc="upper right", fontsize=6.5)
+        axes[-1][0].set_xlabel("t [s]")
+        axes[-1][1].set_xlabel("t [s]")
+    what = "contact force modification, eq. (10)" if kind == "eq10" else "force control, eqs. (14), (20)"
+    fig.suptitle(f"{scen.get('name', '')}: gains of the {what}, one row per gain "
+                 f"(controller.stabilization)", fontsize=10)
+    fig.tight_layout()
+    save(fig, out)
+    for gain, runs in rows:
+        for value, run in runs:
+            fall = f"fell at {run.fall_time:.2f} s" if run.fell else "no fall"
+            rx, ry = run.rms_before_fall()
+            print(f"tuning: {gain}={value:g}: {fall}; RMS phi_x {rx:.2f} deg, phi_y {ry:.2f} deg; "
+                  f"RMS error Fz {wrench_error_rms(run, 'Fz', 3.0):.1f} N, Tx {wrench_error_rms(run, 'Tx', 3.0):.2f} N m, "
+                  f"Ty {wrench_error_rms(run, 'Ty', 3.0):.2f} N m")
+
+
 def main(argv):
     usage = __doc__.split("\n\n")[1]
     if len(argv) < 2:
@@ -364,6 +470,8 @@ def main(argv):
         (fig6 if cmd == "fig6" else fig7)(*args)
     elif cmd == "disturbance" and len(args) in (4, 5):
         disturbance(*args)
+    elif cmd == "tuning" and len(args) >= 4:
+        tuning(*args)
     else:
         die(f"bad arguments: {' '.join(argv[1:])}\n{usage}")
 

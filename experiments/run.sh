@@ -40,6 +40,9 @@ $PLOT fig7 "$OUT/fig7-johnnie-circle" experiments/fig7-johnnie-circle.yaml "$FIG
 $PLOT disturbance "$OUT/disturbance-lola-on" "$OUT/disturbance-lola-off" experiments/disturbance-lola.yaml \
   "$FIGURES/disturbance-lola.png" "$OUT/disturbance-lola-off-nopush"
 
+# Gain sweeps of the tuning guide (docs/tuning.md).
+BIPED=$BIPED OUT=$OUT FIGURES=$FIGURES experiments/tuning.sh
+
 # One line per run: the numbers experiments/README.md quotes.
 $PYTHON - "$OUT" <<'PY'
 import json, os, sys
@@ -58,4 +61,5 @@ for name in ["fig6-lola-straight", "fig7-johnnie-circle", "disturbance-lola-on",
           f"max {t['max']:.2f} deg, {s['distance_m']:.2f} m, {s['steps']} steps, {fall}")
 PY
 echo "experiments: done in ${SECONDS} s; runs in $OUT/, figures:"
-ls -1 "$FIGURES"/fig6-lola-straight.png "$FIGURES"/fig7-johnnie-circle.png "$FIGURES"/disturbance-lola.png | sed 's/^/  /'
+ls -1 "$FIGURES"/fig6-lola-straight.png "$FIGURES"/fig7-johnnie-circle.png "$FIGURES"/disturbance-lola.png \
+  "$FIGURES"/tuning-eq10.png "$FIGURES"/tuning-force.png | sed 's/^/  /'
