@@ -10,7 +10,7 @@
 #include <deque>
 #include <limits>
 
-#include "allocation_counter.hpp"
+#include "apps/allocation_counter.hpp"
 #include "model/multibody_zmp.hpp"
 #include "test_support.hpp"
 
@@ -182,11 +182,9 @@ TEST_P(WalkingControllerTest, ACycleAllocatesNothing) {
   walk.omega = 0.1;
   long allocations = 0;
   for (int i = 0; i < 4000; ++i) {  // through starting, replanning at touchdowns and walking
-    g_allocations = 0;
-    g_counting = true;
+    const long before = heap_allocations();
     loop.cycle(i * 0.001, walk);
-    g_counting = false;
-    allocations += g_allocations;
+    allocations += heap_allocations() - before;
   }
   EXPECT_EQ(allocations, 0);
   EXPECT_GT(loop.controller.status().steps_completed, 2);
