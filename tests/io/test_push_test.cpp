@@ -1,0 +1,53 @@
+// The push test: the stabilizer (eq. 10 with eq. 20) survives at least twice the push impulse of
+// the open-loop baseline, sideways and forward, in LOLA's push scenario (a slow walk that the
+// open loop walks through unpushed, so that both sides of the comparison are measured).
+#include "io/push_test.hpp"
+
+#include <gtest/gtest.h>
+
+#include "io/yaml_reader.hpp"
+#include "test_support.hpp"
+
+namespace biped {
+namespace {
+
+struct OnOff {
+  nlohmann::json on, off;
+};
+
+OnOff push_on_and_off(const std::string& direction) {
+  PushTestOptions options;
+  options.direction = direction;
+  const std::string file = test::source_path("config/scenarios/lola-push.yaml");
+  OnOff r;
+  for (bool stabilizer : {true, false}) {
+    const Scenario scenario = load_scenario(file, {std::string("controller.stabilizer=") + (stabilizer ? "true" : "false")});
+    (stabilizer ? r.on : r.off) = run_push_test(scenario, make_run_config(scenario), options);
+  }
+  return r;
+}
+
+void expect_twice(const OnOff& r) {
+  EXPECT_TRUE(r.on["stabilizer"].get<bool>());
+  EXPECT_FALSE(r.off["stabilizer"].get<bool>());
+  ASSERT_FALSE(r.off["falls_without_push"].get<bool>()) << r.off.dump();
+  ASSERT_FALSE(r.on["falls_without_push"].get<bool>()) << r.on.dump();
+  EXPECT_EQ(r.on["push_time_s"], r.off["push_time_s"]);
+  EXPECT_GE(r.on["max_impulse_Ns"].get<double>(), 2.0 * r.off["max_impulse_Ns"].get<double>())
+      << "on " << r.on.dump() << "\noff " << r.off.dump();
+  EXPECT_FALSE(r.on["survives_max_impulse"].get<bool>());
+}
+
+TEST(PushTest, StabilizerSurvivesTwiceTheOpenLoopLateralPush) { expect_twice(push_on_and_off("left")); }
+
+TEST(PushTest, StabilizerSurvivesTwiceTheOpenLoopSagittalPush) { expect_twice(push_on_and_off("forward")); }
+
+TEST(PushTest, RejectsAnUnknownDirection) {
+  const Scenario scenario = load_scenario(test::source_path("config/scenarios/lola-push.yaml"));
+  PushTestOptions options;
+  options.direction = "up";
+  EXPECT_THROW(run_push_test(scenario, make_run_config(scenario), options), InputError);
+}
+
+}  // namespace
+}  // namespace biped
