@@ -25,7 +25,7 @@ std::array<Wrench, 2> loads(double left, double right) {
 // feels the ground, its commanded height (plan + offset) stays where it met the ground.
 TEST(TerrainAdaptation, EarlyContactHoldsTheFootWhereItMetTheGround) {
   TerrainAdaptationParams params;
-  TerrainAdaptation terrain(params);
+  TerrainAdaptation terrain(test::load_model("lola"), params);
   PatternSample s;
   s.feet[0].in_contact = false;
   s.feet[0].velocity.z() = -0.2;
@@ -51,7 +51,7 @@ TEST(TerrainAdaptation, EarlyContactHoldsTheFootWhereItMetTheGround) {
 // speed until it does, and no further than max_step below the other foot.
 TEST(TerrainAdaptation, LateContactSearchesDownForTheGround) {
   TerrainAdaptationParams params;
-  TerrainAdaptation terrain(params);
+  TerrainAdaptation terrain(test::load_model("lola"), params);
   PatternSample s;
   s.feet[0].in_contact = false;
   terrain.step(kDt, s, loads(-10.0, 500.0));
@@ -66,7 +66,7 @@ TEST(TerrainAdaptation, LateContactSearchesDownForTheGround) {
   for (int i = 0; i < 2000; ++i) terrain.step(kDt, s, loads(300.0, 200.0));
   EXPECT_NEAR(terrain.com_offset(), 0.5 * found, 1e-3) << "the CoM follows the mean foothold height";
 
-  TerrainAdaptation bounded(params);
+  TerrainAdaptation bounded(test::load_model("lola"), params);
   s.feet[0].in_contact = false;
   bounded.step(kDt, s, loads(-10.0, 500.0));
   s.feet[0].in_contact = true;
