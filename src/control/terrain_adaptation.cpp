@@ -32,25 +32,29 @@ void TerrainAdaptation::hold(double dt) {
   com_rate_ = 0.0;
 }
 
-void TerrainAdaptation::settle(Foot& foot, int k, double dt) {
+void TerrainAdaptation::settle(Foot& foot, int k, double dt, const Wrench& desired, bool double_support) {
   foot.tilt_rate = 0.0;
-  if (!foot.settling || foot.filtered_force <= params_.contact_force) return;
-  // T_y = −x_CoP F_z in the sensor frame.
+  if (!foot.settling) return;
+  if (foot.filtered_force <= params_.contact_force || desired.force.z() <= params_.contact_force) return;
+  // T_y = −x_CoP F_z in the sensor frame. The error is filtered: landing on flat ground moves the
+  // centre of pressure for a few tens of milliseconds, a missing support keeps it away.
   const double cop = -foot.filtered_torque / foot.filtered_force;
-  double direction = 0.0;
-  if (cop < heel_x_[k] + params_.edge_band) {
-    direction = 1.0;  // on the heel edge only: toes down
-    foot.pivot = heel_x_[k];
-  } else if (cop > toe_x_[k] - params_.edge_band) {
-    direction = -1.0;  // on the toe edge only: heel down
-    foot.pivot = toe_x_[k];
-  }
-  const double tilt = std::clamp(foot.tilt + direction * params_.tilt_search_speed * dt, -params_.max_tilt, params_.max_tilt);
-  // The sole has found its support (or the bound is reached): the tilt holds for this stance.
-  if (direction == 0.0 || tilt == foot.tilt) {
-    foot.settling = false;
+  const double error = -desired.torque.y() / desired.force.z() - cop;
+  foot.cop_error += dt / (params_.cop_filter_time + dt) * (error - foot.cop_error);
+  const double direction = foot.cop_error > params_.cop_band ? 1.0 : foot.cop_error < -params_.cop_band ? -1.0 : 0.0;
+  if (direction == 0.0) {
+    // Found: once the other foot has left the ground the tilt holds for this stance.
+    if (!double_support) foot.settling = false;
     return;
   }
+  // Turning starts about the present centre of pressure: the edge of the support the sole has.
+  if (foot.tilt_rate_sign == 0.0) foot.pivot = std::clamp(cop, heel_x_[k], toe_x_[k]);
+  const double tilt = std::clamp(foot.tilt + direction * params_.tilt_search_speed * dt, -params_.max_tilt, params_.max_tilt);
+  if (tilt == foot.tilt || (foot.tilt_rate_sign != 0.0 && direction != foot.tilt_rate_sign)) {
+    foot.settling = false;  // the bound, or a reversal: no further search in this stance
+    return;
+  }
+  foot.tilt_rate_sign = direction;
   foot.tilt_rate = (tilt - foot.tilt) / dt;
   foot.tilt = tilt;
 }
@@ -68,13 +72,14 @@ void TerrainAdaptation::set_offset(Foot& foot, double offset, double dt) {
 }
 
 void TerrainAdaptation::step(double dt, const PatternSample& s, const std::array<Wrench, 2>& measured,
-                             const std::array<double, 2>& height_modification) {
+                             const std::array<Wrench, 2>& desired, const std::array<double, 2>& height_modification) {
   if (!params_.enabled) return;
   const double filter = dt / (params_.filter_time + dt);
   for (int k = 0; k < 2; ++k) {
     Foot& foot = feet_[k];
     const Foot& other = feet_[1 - k];
     const FootReference& plan = s.feet[k];
+    const bool other_planned_contact = s.feet[1 - k].in_contact;
     foot.filtered_force += filter * (measured[k].force.z() - foot.filtered_force);
     foot.filtered_torque += filter * (measured[k].torque.y() - foot.filtered_torque);
     const bool contact = foot.filtered_force > params_.contact_force;
@@ -82,6 +87,8 @@ void TerrainAdaptation::step(double dt, const PatternSample& s, const std::array
     if (!plan.in_contact) {
       if (foot.phase == Phase::Stance) foot.phase = Phase::Swing;
       foot.settling = true;
+      foot.tilt_rate_sign = 0.0;
+      foot.cop_error = 0.0;
       return_tilt(foot, dt);
       if (foot.phase == Phase::Swing) {
         // Aim at the ground the stance foot stands on. A higher target is reached while the foot
@@ -120,7 +127,7 @@ void TerrainAdaptation::step(double dt, const PatternSample& s, const std::array
         // Force control lowers or raises the foot onto the ground on top of the offset.
         foot.ground = foot.offset + height_modification[k];
         foot.rate = 0.0;
-        settle(foot, k, dt);
+        settle(foot, k, dt, desired[k], other_planned_contact);
       }
     }
   }

@@ -6,11 +6,11 @@
 //    latched while the plan would move it further down);
 //  - late contact: a foot that finds no ground at the planned touchdown keeps descending at a search
 //    speed until it does;
-//  - edge contact: a foot that has just touched down and stands only on its heel or its toe edge
-//    (the measured centre of pressure sits at that edge, e.g. on a step edge with the rest of the
-//    sole over the lower level) turns about that edge at a search speed until the rest of the sole
-//    finds ground (the centre of pressure leaves the edge); the tilt holds for that stance and returns
-//    to zero in the swing;
+//  - partial support: a foot that has just touched down and cannot put its centre of pressure where
+//    the stabilizer asks (the measured one stays more than a band behind or ahead of it, e.g. on a
+//    step edge with the front of the sole over the lower level) turns about its present centre of
+//    pressure towards the desired one at a search speed until the sole finds the ground there; the
+//    tilt holds for that stance and returns to zero in the swing;
 //  - the foot's height at touchdown is the ground height of that foothold; the next swing foot aims
 //    at the ground height of the stance foot, and the CoM height follows the mean ground height of
 //    the footholds, so the legs keep their planned length.
@@ -31,7 +31,8 @@ struct TerrainAdaptationParams {
   double search_speed = 0.25;     // [m/s] descent of a foot that found no ground at touchdown
   double max_step = 0.05;         // [m] bound of a foothold's height against the other foot's
   double com_follow_time = 0.3;   // [s] time constant of the CoM height following the footholds
-  double edge_band = 0.015;       // [m] a centre of pressure this close to the heel or toe edge: edge contact
+  double cop_band = 0.04;         // [m] desired centre of pressure this far from the measured one at touchdown: the sole lacks support there
+  double cop_filter_time = 0.03;  // [s] first-order filter of that distance
   double tilt_search_speed = 0.5; // [rad/s] turn of a foot in edge contact about that edge
   double max_tilt = 0.15;         // [rad] bound of a foot's tilt
 };
@@ -41,11 +42,11 @@ class TerrainAdaptation {
   // The soles' heel and toe edges come from the model's foot geometry.
   TerrainAdaptation(const RobotModel& model, const TerrainAdaptationParams& params);
   void reset();
-  // One cycle with the pattern's sample and the measured contact wrenches. `height_modification`:
-  // force control's present height modification of each foot (Δz of eq. 20), part of where a
-  // standing foot's ground is.
+  // One cycle with the pattern's sample, the measured and the desired contact wrenches (λ_d of
+  // eq. 10, last cycle), and force control's present height modification of each foot (Δz of
+  // eq. 20), part of where a standing foot's ground is.
   void step(double dt, const PatternSample& s, const std::array<Wrench, 2>& measured,
-            const std::array<double, 2>& height_modification = {0.0, 0.0});
+            const std::array<Wrench, 2>& desired = {}, const std::array<double, 2>& height_modification = {0.0, 0.0});
   // Without trusted force readings: standing feet keep their offsets, a foot in the air goes to the
   // other foot's ground height.
   void hold(double dt);
@@ -75,10 +76,12 @@ class TerrainAdaptation {
     bool settling = false;         // from touchdown until the sole has found its support
     double tilt = 0.0, tilt_rate = 0.0;
     double pivot = 0.0;            // x of the edge the foot turned about (sensor frame) [m]
+    double tilt_rate_sign = 0.0;   // direction of this stance's tilt search (0: not started)
+    double cop_error = 0.0;        // desired − measured x of the centre of pressure, filtered [m]
   };
   void set_offset(Foot& foot, double offset, double dt);
   // Edge contact at touchdown: the tilt search, and the tilt's return to zero in the swing.
-  void settle(Foot& foot, int k, double dt);
+  void settle(Foot& foot, int k, double dt, const Wrench& desired, bool double_support);
   void return_tilt(Foot& foot, double dt);
   static constexpr double kSwingSpeed = 0.5;  // [m/s] a swinging foot's offset moves to its target at most this fast
 

@@ -257,7 +257,7 @@ void WalkingController::step(const SensorData& raw_sensors, const WalkCommand& c
   // Finding the ground needs both F/T sensors; after a fault the footholds keep their heights.
   if (params_.stabilizer && !status_.fault) {
     const auto& m = stabilizer_.modification();
-    terrain_.step(params_.rmrc.dt, sample_, sensors.foot_wrench, {m[0].offset[0], m[1].offset[0]});
+    terrain_.step(params_.rmrc.dt, sample_, sensors.foot_wrench, stabilizer_.desired(), {m[0].offset[0], m[1].offset[0]});
   }
   if (status_.fault) terrain_.hold(params_.rmrc.dt);
   task_reference(sample_);
@@ -290,7 +290,10 @@ void WalkingController::step(const SensorData& raw_sensors, const WalkCommand& c
   status_.state = name_of(fsm_.state());
   status_.com_estimate_valid = params_.stabilizer && use_sensors;
   status_.num_planned_steps = num_planned_;
-  for (int k = 0; k < 2; ++k) status_.foot_height_offset[k] = terrain_.foot_offset(k);
+  for (int k = 0; k < 2; ++k) {
+    status_.foot_height_offset[k] = terrain_.foot_offset(k);
+    status_.foot_tilt[k] = terrain_.foot_tilt(k);
+  }
   for (int i = 0; i < num_planned_; ++i) {
     const Footstep& f = planned_[i];
     status_.planned_steps[i] = {f.side, f.position, f.yaw, f.touchdown};
