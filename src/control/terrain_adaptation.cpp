@@ -32,7 +32,7 @@ void TerrainAdaptation::hold(double dt) {
   com_rate_ = 0.0;
 }
 
-void TerrainAdaptation::settle(Foot& foot, int k, double dt, const Wrench& desired, bool double_support) {
+void TerrainAdaptation::settle(Foot& foot, int k, double dt, const Wrench& desired, bool loading) {
   foot.tilt_rate = 0.0;
   if (!foot.settling) return;
   if (foot.filtered_force <= params_.contact_force || desired.force.z() <= params_.contact_force) return;
@@ -43,8 +43,10 @@ void TerrainAdaptation::settle(Foot& foot, int k, double dt, const Wrench& desir
   foot.cop_error += dt / (params_.cop_filter_time + dt) * (error - foot.cop_error);
   const double direction = foot.cop_error > params_.cop_band ? 1.0 : foot.cop_error < -params_.cop_band ? -1.0 : 0.0;
   if (direction == 0.0) {
-    // Found: once the other foot has left the ground the tilt holds for this stance.
-    if (!double_support) foot.settling = false;
+    // Found, once the load has come over to this foot (the other one has left the ground, or the
+    // plan no longer shifts load to it, as when standing after the last step): the tilt holds for
+    // this stance.
+    if (!loading) foot.settling = false;
     return;
   }
   // Turning starts about the present centre of pressure: the edge of the support the sole has.
@@ -79,7 +81,9 @@ void TerrainAdaptation::step(double dt, const PatternSample& s, const std::array
     Foot& foot = feet_[k];
     const Foot& other = feet_[1 - k];
     const FootReference& plan = s.feet[k];
-    const bool other_planned_contact = s.feet[1 - k].in_contact;
+    // The plan is shifting load onto this foot (the double support after its touchdown).
+    const bool loading = s.feet[1 - k].in_contact && s.load_share[k] > foot.load_share;
+    foot.load_share = s.load_share[k];
     foot.filtered_force += filter * (measured[k].force.z() - foot.filtered_force);
     foot.filtered_torque += filter * (measured[k].torque.y() - foot.filtered_torque);
     const bool contact = foot.filtered_force > params_.contact_force;
@@ -127,7 +131,7 @@ void TerrainAdaptation::step(double dt, const PatternSample& s, const std::array
         // Force control lowers or raises the foot onto the ground on top of the offset.
         foot.ground = foot.offset + height_modification[k];
         foot.rate = 0.0;
-        settle(foot, k, dt, desired[k], other_planned_contact);
+        settle(foot, k, dt, desired[k], loading);
       }
     }
   }

@@ -78,10 +78,11 @@ class TerrainAdaptation {
     double pivot = 0.0;            // x of the edge the foot turned about (sensor frame) [m]
     double tilt_rate_sign = 0.0;   // direction of this stance's tilt search (0: not started)
     double cop_error = 0.0;        // desired − measured x of the centre of pressure, filtered [m]
+    double load_share = 0.0;       // the plan's share of the load, last cycle
   };
   void set_offset(Foot& foot, double offset, double dt);
   // Edge contact at touchdown: the tilt search, and the tilt's return to zero in the swing.
-  void settle(Foot& foot, int k, double dt, const Wrench& desired, bool double_support);
+  void settle(Foot& foot, int k, double dt, const Wrench& desired, bool loading);
   void return_tilt(Foot& foot, double dt);
   static constexpr double kSwingSpeed = 0.5;  // [m/s] a swinging foot's offset moves to its target at most this fast
 

@@ -75,9 +75,9 @@ TEST(TerrainAdaptation, LateContactSearchesDownForTheGround) {
   EXPECT_NEAR(bounded.foot_offset(0), -params.max_step, 1e-12);
 }
 
-// A foot lands with the front of its sole over a lower level: the measured centre of pressure
-// stays behind the desired one, so the foot turns toes down about it until it is found; a foot
-// whose centre of pressure follows (flat ground) does not turn.
+// A foot lands with the front of its sole over a lower level: while the load shifts onto it, the
+// measured centre of pressure stays behind the desired one, so the foot turns toes down about it
+// until it is found; a foot whose centre of pressure follows (flat ground) does not turn.
 TEST(TerrainAdaptation, PartialSupportTurnsTheFootAboutItsCentreOfPressure) {
   const RobotModel model = test::load_model("lola");
   TerrainAdaptationParams params;
@@ -89,10 +89,14 @@ TEST(TerrainAdaptation, PartialSupportTurnsTheFootAboutItsCentreOfPressure) {
   for (bool supported : {true, false}) {
     TerrainAdaptation terrain(model, params);
     s.feet[0].in_contact = false;
+    s.load_share = {0.0, 1.0};
     terrain.step(kDt, s, measured, {desired, desired});
     s.feet[0].in_contact = true;
     measured[0].torque.y() = supported ? desired.torque.y() : 0.08 * 400.0;  // 8 cm behind the ankle
-    for (int i = 0; i < 100; ++i) terrain.step(kDt, s, measured, {desired, desired});
+    for (int i = 0; i < 100; ++i) {  // the double support after touchdown: load shifts onto it
+      s.load_share = {0.005 * (i + 1), 1.0 - 0.005 * (i + 1)};
+      terrain.step(kDt, s, measured, {desired, desired});
+    }
     if (supported) {
       EXPECT_DOUBLE_EQ(terrain.foot_tilt(0), 0.0);
       continue;
