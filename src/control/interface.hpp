@@ -61,6 +61,8 @@ struct ControllerStatus {
   // (controller frame); valid while the stabilizer uses the sensors.
   Eigen::Vector2d com_estimated = Eigen::Vector2d::Zero();
   bool com_estimate_valid = false;
+  std::array<double, 2> foot_height_offset{};  // [m] terrain adaptation's offset of each foot's planned height
+  std::array<double, 2> foot_tilt{};           // [rad] terrain adaptation's tilt of each foot (toes down)
 };
 
 class Controller {

@@ -4,6 +4,13 @@
 
 namespace biped {
 
+TerrainAdaptation::TerrainAdaptation(const RobotModel& model, const TerrainAdaptationParams& params) : params_(params) {
+  for (Side side : kSides) {
+    heel_x_[index_of(side)] = model.foot(side).sole_x_min;
+    toe_x_[index_of(side)] = model.foot(side).sole_x_max;
+  }
+}
+
 void TerrainAdaptation::reset() {
   feet_ = {};
   com_offset_ = com_rate_ = 0.0;
@@ -15,13 +22,50 @@ void TerrainAdaptation::hold(double dt) {
   for (int k = 0; k < 2; ++k) {
     Foot& foot = feet_[k];
     if (foot.phase == Phase::Stance) {
-      foot.rate = 0.0;
+      foot.rate = foot.tilt_rate = 0.0;
       continue;
     }
+    return_tilt(foot, dt);
     const double target = feet_[1 - k].ground;
     set_offset(foot, foot.offset + std::clamp(target - foot.offset, -kSwingSpeed * dt, kSwingSpeed * dt), dt);
   }
   com_rate_ = 0.0;
+}
+
+void TerrainAdaptation::settle(Foot& foot, int k, double dt, const Wrench& desired, bool loading) {
+  foot.tilt_rate = 0.0;
+  if (!foot.settling) return;
+  if (foot.filtered_force <= params_.contact_force || desired.force.z() <= params_.contact_force) return;
+  // T_y = −x_CoP F_z in the sensor frame. The error is filtered: landing on flat ground moves the
+  // centre of pressure for a few tens of milliseconds, a missing support keeps it away.
+  const double cop = -foot.filtered_torque / foot.filtered_force;
+  const double error = -desired.torque.y() / desired.force.z() - cop;
+  foot.cop_error += dt / (params_.cop_filter_time + dt) * (error - foot.cop_error);
+  const double direction = foot.cop_error > params_.cop_band ? 1.0 : foot.cop_error < -params_.cop_band ? -1.0 : 0.0;
+  if (direction == 0.0) {
+    // Found, once the load has come over to this foot (the other one has left the ground, or the
+    // plan no longer shifts load to it, as when standing after the last step): the tilt holds for
+    // this stance.
+    if (!loading) foot.settling = false;
+    return;
+  }
+  // Turning starts about the present centre of pressure: the edge of the support the sole has.
+  if (foot.tilt_rate_sign == 0.0) foot.pivot = std::clamp(cop, heel_x_[k], toe_x_[k]);
+  const double tilt = std::clamp(foot.tilt + direction * params_.tilt_search_speed * dt, -params_.max_tilt, params_.max_tilt);
+  if (tilt == foot.tilt || (foot.tilt_rate_sign != 0.0 && direction != foot.tilt_rate_sign)) {
+    foot.settling = false;  // the bound, or a reversal: no further search in this stance
+    return;
+  }
+  foot.tilt_rate_sign = direction;
+  foot.tilt_rate = (tilt - foot.tilt) / dt;
+  foot.tilt = tilt;
+}
+
+void TerrainAdaptation::return_tilt(Foot& foot, double dt) {
+  // Critically damped, so the return starts without a jerk.
+  const double w = 1.0 / kTiltReturnTime;
+  foot.tilt_rate += dt * (-w * w * foot.tilt - 2.0 * w * foot.tilt_rate);
+  foot.tilt += dt * foot.tilt_rate;
 }
 
 void TerrainAdaptation::set_offset(Foot& foot, double offset, double dt) {
@@ -29,22 +73,41 @@ void TerrainAdaptation::set_offset(Foot& foot, double offset, double dt) {
   foot.offset = offset;
 }
 
-void TerrainAdaptation::step(double dt, const PatternSample& s, const std::array<Wrench, 2>& measured) {
+void TerrainAdaptation::step(double dt, const PatternSample& s, const std::array<Wrench, 2>& measured,
+                             const std::array<Wrench, 2>& desired, const std::array<double, 2>& height_modification) {
   if (!params_.enabled) return;
   const double filter = dt / (params_.filter_time + dt);
   for (int k = 0; k < 2; ++k) {
     Foot& foot = feet_[k];
     const Foot& other = feet_[1 - k];
     const FootReference& plan = s.feet[k];
+    // The plan is shifting load onto this foot (the double support after its touchdown).
+    const bool loading = s.feet[1 - k].in_contact && s.load_share[k] > foot.load_share;
+    foot.load_share = s.load_share[k];
     foot.filtered_force += filter * (measured[k].force.z() - foot.filtered_force);
+    foot.filtered_torque += filter * (measured[k].torque.y() - foot.filtered_torque);
     const bool contact = foot.filtered_force > params_.contact_force;
     const double lowest = other.ground - params_.max_step, highest = other.ground + params_.max_step;
     if (!plan.in_contact) {
       if (foot.phase == Phase::Stance) foot.phase = Phase::Swing;
+      foot.settling = true;
+      foot.tilt_rate_sign = 0.0;
+      foot.cop_error = 0.0;
+      return_tilt(foot, dt);
       if (foot.phase == Phase::Swing) {
-        // Aim at the ground the stance foot stands on; lift-off lets the force fade first.
+        // Aim at the ground the stance foot stands on. A higher target is reached while the foot
+        // rises; a lower one only while it descends, in proportion to the planned descent, so the
+        // foot neither pushes into the ground it lifts off from nor jerks.
         const double target = other.ground;
-        set_offset(foot, foot.offset + std::clamp(target - foot.offset, -kSwingSpeed * dt, kSwingSpeed * dt), dt);
+        const double clearance = plan.position.z() - foot.planned_ground;
+        if (plan.velocity.z() < 0.0 && clearance > 0.0) {
+          const double share = std::min(1.0, -plan.velocity.z() * dt / clearance);
+          set_offset(foot, foot.offset + share * (target - foot.offset), dt);
+        } else if (target > foot.offset) {
+          set_offset(foot, std::min(target, foot.offset + kSwingSpeed * dt), dt);
+        } else {
+          foot.rate = 0.0;
+        }
         if (contact && plan.velocity.z() < 0.0) {
           foot.phase = Phase::Latched;
           foot.latched_height = plan.position.z() + foot.offset;
@@ -54,6 +117,7 @@ void TerrainAdaptation::step(double dt, const PatternSample& s, const std::array
         set_offset(foot, std::min(foot.latched_height - plan.position.z(), highest), dt);
       }
     } else {
+      foot.planned_ground = plan.position.z();
       if (foot.phase == Phase::Swing) foot.phase = contact ? Phase::Stance : Phase::Searching;
       if (foot.phase == Phase::Latched) foot.phase = Phase::Stance;
       if (foot.phase == Phase::Searching) {
@@ -64,8 +128,10 @@ void TerrainAdaptation::step(double dt, const PatternSample& s, const std::array
         }
       }
       if (foot.phase == Phase::Stance) {
-        foot.ground = foot.offset;
+        // Force control lowers or raises the foot onto the ground on top of the offset.
+        foot.ground = foot.offset + height_modification[k];
         foot.rate = 0.0;
+        settle(foot, k, dt, desired[k], loading);
       }
     }
   }

@@ -6,14 +6,20 @@
 //    latched while the plan would move it further down);
 //  - late contact: a foot that finds no ground at the planned touchdown keeps descending at a search
 //    speed until it does;
+//  - partial support: a foot that has just touched down and cannot put its centre of pressure where
+//    the stabilizer asks (the measured one stays more than a band behind or ahead of it, e.g. on a
+//    step edge with the front of the sole over the lower level) turns about its present centre of
+//    pressure towards the desired one at a search speed until the sole finds the ground there; the
+//    tilt holds for that stance and returns to zero in the swing;
 //  - the foot's height at touchdown is the ground height of that foothold; the next swing foot aims
 //    at the ground height of the stance foot, and the CoM height follows the mean ground height of
 //    the footholds, so the legs keep their planned length.
-// The outputs are height offsets added to the feet's and the CoM's planned heights in eq. (21);
-// force control (eq. 20) acts on top of them.
+// The outputs are height offsets added to the feet's and the CoM's planned heights, and tilts added
+// to the feet's planned orientations in eq. (21); force control (eq. 20) acts on top of them.
 #include <array>
 
 #include "math/wrench.hpp"
+#include "model/robot_model.hpp"
 #include "planning/walking_pattern_generator.hpp"
 
 namespace biped {
@@ -25,21 +31,33 @@ struct TerrainAdaptationParams {
   double search_speed = 0.25;     // [m/s] descent of a foot that found no ground at touchdown
   double max_step = 0.05;         // [m] bound of a foothold's height against the other foot's
   double com_follow_time = 0.3;   // [s] time constant of the CoM height following the footholds
+  double cop_band = 0.04;         // [m] desired centre of pressure this far from the measured one at touchdown: the sole lacks support there
+  double cop_filter_time = 0.03;  // [s] first-order filter of that distance
+  double tilt_search_speed = 0.5; // [rad/s] turn of a foot in edge contact about that edge
+  double max_tilt = 0.15;         // [rad] bound of a foot's tilt
 };
 
 class TerrainAdaptation {
  public:
-  explicit TerrainAdaptation(const TerrainAdaptationParams& params) : params_(params) {}
+  // The soles' heel and toe edges come from the model's foot geometry.
+  TerrainAdaptation(const RobotModel& model, const TerrainAdaptationParams& params);
   void reset();
-  // One cycle with the pattern's sample and the measured contact wrenches.
-  void step(double dt, const PatternSample& s, const std::array<Wrench, 2>& measured);
+  // One cycle with the pattern's sample, the measured and the desired contact wrenches (λ_d of
+  // eq. 10, last cycle), and force control's present height modification of each foot (Δz of
+  // eq. 20), part of where a standing foot's ground is.
+  void step(double dt, const PatternSample& s, const std::array<Wrench, 2>& measured,
+            const std::array<Wrench, 2>& desired = {}, const std::array<double, 2>& height_modification = {0.0, 0.0});
   // Without trusted force readings: standing feet keep their offsets, a foot in the air goes to the
   // other foot's ground height.
   void hold(double dt);
 
   // Offsets of the planned heights [m] and their rates [m/s]: per foot (by Side) and of the CoM.
-  double foot_offset(int k) const { return feet_[k].offset; }
-  double foot_offset_rate(int k) const { return feet_[k].rate; }
+  // A tilted foot's ankle moves with the tilt so that the edge it turned about stays in place.
+  double foot_offset(int k) const { return feet_[k].offset + feet_[k].pivot * feet_[k].tilt; }
+  double foot_offset_rate(int k) const { return feet_[k].rate + feet_[k].pivot * feet_[k].tilt_rate; }
+  // Tilt of each foot about its lateral axis (positive: toes down) [rad] and its rate [rad/s].
+  double foot_tilt(int k) const { return feet_[k].tilt; }
+  double foot_tilt_rate(int k) const { return feet_[k].tilt_rate; }
   double com_offset() const { return com_offset_; }
   double com_offset_rate() const { return com_rate_; }
   // Estimated ground height under each foothold, relative to the ground the plan assumes.
@@ -53,11 +71,25 @@ class TerrainAdaptation {
     double offset = 0.0, rate = 0.0;
     double latched_height = 0.0;  // planned height + offset when the ground was met
     double filtered_force = 0.0;
+    double planned_ground = 0.0;  // the plan's height of this foot standing (its swing clearance is above it)
+    double filtered_torque = 0.0;  // T_y, filtered like the force
+    bool settling = false;         // from touchdown until the sole has found its support
+    double tilt = 0.0, tilt_rate = 0.0;
+    double pivot = 0.0;            // x of the edge the foot turned about (sensor frame) [m]
+    double tilt_rate_sign = 0.0;   // direction of this stance's tilt search (0: not started)
+    double cop_error = 0.0;        // desired − measured x of the centre of pressure, filtered [m]
+    double load_share = 0.0;       // the plan's share of the load, last cycle
   };
   void set_offset(Foot& foot, double offset, double dt);
+  // Edge contact at touchdown: the tilt search, and the tilt's return to zero in the swing.
+  void settle(Foot& foot, int k, double dt, const Wrench& desired, bool loading);
+  void return_tilt(Foot& foot, double dt);
   static constexpr double kSwingSpeed = 0.5;  // [m/s] a swinging foot's offset moves to its target at most this fast
 
+  static constexpr double kTiltReturnTime = 0.05;  // [s] time constant of the tilt's return in the swing
+
   TerrainAdaptationParams params_;
+  std::array<double, 2> heel_x_{}, toe_x_{};  // sole edges per foot (sensor frame) [m]
   std::array<Foot, 2> feet_;
   double com_offset_ = 0.0, com_rate_ = 0.0;
 };

@@ -33,7 +33,7 @@ WalkingController::WalkingController(const RobotModel& model, const WalkingContr
       rmrc_(model, space_, params.rmrc),
       pattern_(pattern_params(model, params)),
       stabilizer_(model, params.stabilization),
-      terrain_(params.terrain),
+      terrain_(model, params.terrain),
       com_estimator_(model),
       x_id_(Eigen::VectorXd::Zero(space_.dim())),
       xdot_id_(Eigen::VectorXd::Zero(space_.dim())),
@@ -145,8 +145,12 @@ void WalkingController::task_reference(const PatternSample& s) {
     xdot_id_.segment<3>(L.foot_position[k]) = foot.velocity - s.com_velocity;
     x_id_[L.foot_position[k] + 2] += terrain_.foot_offset(k) - terrain_.com_offset();
     xdot_id_[L.foot_position[k] + 2] += terrain_.foot_offset_rate(k) - terrain_.com_offset_rate();
-    x_id_.segment<3>(L.foot_orientation[k]) << 0.0, 0.0, wrap(foot.yaw - s.heading);
-    xdot_id_.segment<3>(L.foot_orientation[k]) << 0.0, 0.0, foot.yaw_rate - s.heading_rate;
+    // The terrain adaptation's tilt is about the foot's lateral axis, turned into the heading frame.
+    const Eigen::Vector3d tilt_axis = yaw_rotation(wrap(foot.yaw - s.heading)) * Eigen::Vector3d::UnitY();
+    x_id_.segment<3>(L.foot_orientation[k]) = terrain_.foot_tilt(k) * tilt_axis;
+    x_id_[L.foot_orientation[k] + 2] = wrap(foot.yaw - s.heading);
+    xdot_id_.segment<3>(L.foot_orientation[k]) = terrain_.foot_tilt_rate(k) * tilt_axis;
+    xdot_id_[L.foot_orientation[k] + 2] = foot.yaw_rate - s.heading_rate;
     // Arms swing against the legs: the right arm forward with the left leg.
     const double swing = side == Side::Right ? s.arm_swing : -s.arm_swing;
     const double swing_rate = side == Side::Right ? s.arm_swing_rate : -s.arm_swing_rate;
@@ -251,7 +255,10 @@ void WalkingController::step(const SensorData& raw_sensors, const WalkCommand& c
 
   pattern_.sample(t, sample_);
   // Finding the ground needs both F/T sensors; after a fault the footholds keep their heights.
-  if (params_.stabilizer && !status_.fault) terrain_.step(params_.rmrc.dt, sample_, sensors.foot_wrench);
+  if (params_.stabilizer && !status_.fault) {
+    const auto& m = stabilizer_.modification();
+    terrain_.step(params_.rmrc.dt, sample_, sensors.foot_wrench, stabilizer_.desired(), {m[0].offset[0], m[1].offset[0]});
+  }
   if (status_.fault) terrain_.hold(params_.rmrc.dt);
   task_reference(sample_);
   using Clock = std::chrono::steady_clock;
@@ -283,6 +290,10 @@ void WalkingController::step(const SensorData& raw_sensors, const WalkCommand& c
   status_.state = name_of(fsm_.state());
   status_.com_estimate_valid = params_.stabilizer && use_sensors;
   status_.num_planned_steps = num_planned_;
+  for (int k = 0; k < 2; ++k) {
+    status_.foot_height_offset[k] = terrain_.foot_offset(k);
+    status_.foot_tilt[k] = terrain_.foot_tilt(k);
+  }
   for (int i = 0; i < num_planned_; ++i) {
     const Footstep& f = planned_[i];
     status_.planned_steps[i] = {f.side, f.position, f.yaw, f.touchdown};

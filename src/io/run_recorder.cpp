@@ -33,6 +33,10 @@ RunRecorder::RunRecorder(const Simulation& sim, std::ostream* csv) : csv_(csv) {
     o << ',' << p << "_Fz_des," << p << "_Tx_des," << p << "_Ty_des," << p << "_Fz," << p << "_Tx," << p << "_Ty";
   }
   o << ",com_x_des,com_y_des,com_z_des,zmp_x_des,zmp_y_des,cmd_saturated,steps_completed,contact_stiffness,cycle_us";
+  for (Side side : kSides) {
+    const std::string p = name_of(side);
+    o << ',' << p << "_foot_x," << p << "_foot_z," << p << "_foot_pitch_deg," << p << "_terrain_dz," << p << "_terrain_tilt_deg";
+  }
   for (int i = 0; i < sim.plant().mj()->nq; ++i) o << ",qpos_" << i;
   o << '\n';
 }
@@ -86,6 +90,16 @@ void RunRecorder::record(const Simulation& sim, const SensorData& sensors, const
                 status.com_desired.y(), status.com_desired.z(), status.zmp_desired.x(), status.zmp_desired.y(),
                 status.command_saturated ? 1 : 0, status.steps_completed, status.contact_stiffness, cycle_us);
   o << line_;
+  // The actual foot (the sensor frame of the ground truth) and the terrain adaptation's offset.
+  for (Side side : kSides) {
+    const FootInfo& foot = sim.plant().foot(side);
+    const double* site = d->site_xpos + 3 * foot.sensor_site;
+    const Eigen::Matrix3d R = math::mat_from_mujoco(d->site_xmat + 9 * foot.sensor_site);
+    const double pitch = std::atan2(-R(2, 0), R(0, 0));
+    std::snprintf(line_, sizeof(line_), ",%.5f,%.5f,%.3f,%.5f,%.3f", site[0], site[2], pitch * kRadToDeg,
+                  status.foot_height_offset[index_of(side)], status.foot_tilt[index_of(side)] * kRadToDeg);
+    o << line_;
+  }
   for (int i = 0; i < m->nq; ++i) {
     std::snprintf(line_, sizeof(line_), ",%.7g", d->qpos[i]);
     o << line_;

@@ -1,5 +1,6 @@
-// Terrain adaptation: the early-contact latch and the late-contact search on constructed samples,
-// and the closed loop over terrain the controller is not told about, adaptation on against off.
+// Terrain adaptation: the early-contact latch, the late-contact search and the turn of a partly
+// supported foot on constructed samples, and the closed loop over terrain the controller is not
+// told about, adaptation on against off.
 #include "control/terrain_adaptation.hpp"
 
 #include <gtest/gtest.h>
@@ -25,7 +26,7 @@ std::array<Wrench, 2> loads(double left, double right) {
 // feels the ground, its commanded height (plan + offset) stays where it met the ground.
 TEST(TerrainAdaptation, EarlyContactHoldsTheFootWhereItMetTheGround) {
   TerrainAdaptationParams params;
-  TerrainAdaptation terrain(params);
+  TerrainAdaptation terrain(test::load_model("lola"), params);
   PatternSample s;
   s.feet[0].in_contact = false;
   s.feet[0].velocity.z() = -0.2;
@@ -51,7 +52,7 @@ TEST(TerrainAdaptation, EarlyContactHoldsTheFootWhereItMetTheGround) {
 // speed until it does, and no further than max_step below the other foot.
 TEST(TerrainAdaptation, LateContactSearchesDownForTheGround) {
   TerrainAdaptationParams params;
-  TerrainAdaptation terrain(params);
+  TerrainAdaptation terrain(test::load_model("lola"), params);
   PatternSample s;
   s.feet[0].in_contact = false;
   terrain.step(kDt, s, loads(-10.0, 500.0));
@@ -66,7 +67,7 @@ TEST(TerrainAdaptation, LateContactSearchesDownForTheGround) {
   for (int i = 0; i < 2000; ++i) terrain.step(kDt, s, loads(300.0, 200.0));
   EXPECT_NEAR(terrain.com_offset(), 0.5 * found, 1e-3) << "the CoM follows the mean foothold height";
 
-  TerrainAdaptation bounded(params);
+  TerrainAdaptation bounded(test::load_model("lola"), params);
   s.feet[0].in_contact = false;
   bounded.step(kDt, s, loads(-10.0, 500.0));
   s.feet[0].in_contact = true;
@@ -74,9 +75,47 @@ TEST(TerrainAdaptation, LateContactSearchesDownForTheGround) {
   EXPECT_NEAR(bounded.foot_offset(0), -params.max_step, 1e-12);
 }
 
-bool falls(const char* scenario, bool adaptation) {
+// A foot lands with the front of its sole over a lower level: while the load shifts onto it, the
+// measured centre of pressure stays behind the desired one, so the foot turns toes down about it
+// until it is found; a foot whose centre of pressure follows (flat ground) does not turn.
+TEST(TerrainAdaptation, PartialSupportTurnsTheFootAboutItsCentreOfPressure) {
+  const RobotModel model = test::load_model("lola");
+  TerrainAdaptationParams params;
+  PatternSample s;
+  Wrench desired;
+  desired.force.z() = 400.0;
+  desired.torque.y() = -0.05 * 400.0;  // desired CoP 5 cm ahead of the ankle
+  std::array<Wrench, 2> measured = loads(400.0, 400.0);
+  for (bool supported : {true, false}) {
+    TerrainAdaptation terrain(model, params);
+    s.feet[0].in_contact = false;
+    s.load_share = {0.0, 1.0};
+    terrain.step(kDt, s, measured, {desired, desired});
+    s.feet[0].in_contact = true;
+    measured[0].torque.y() = supported ? desired.torque.y() : 0.08 * 400.0;  // 8 cm behind the ankle
+    for (int i = 0; i < 100; ++i) {  // the double support after touchdown: load shifts onto it
+      s.load_share = {0.005 * (i + 1), 1.0 - 0.005 * (i + 1)};
+      terrain.step(kDt, s, measured, {desired, desired});
+    }
+    if (supported) {
+      EXPECT_DOUBLE_EQ(terrain.foot_tilt(0), 0.0);
+      continue;
+    }
+    EXPECT_GT(terrain.foot_tilt(0), 0.02) << "toes down";
+    EXPECT_NEAR(terrain.foot_offset(0) / terrain.foot_tilt(0), -0.08, 0.005) << "the ankle follows the turn about the CoP";
+    measured[0].torque.y() = desired.torque.y();  // the toe has found the ground
+    for (int i = 0; i < 200; ++i) terrain.step(kDt, s, measured, {desired, desired});
+    const double found = terrain.foot_tilt(0);
+    EXPECT_LE(found, params.max_tilt);
+    s.feet[1].in_contact = false;  // single support: the tilt holds
+    for (int i = 0; i < 200; ++i) terrain.step(kDt, s, measured, {desired, desired});
+    EXPECT_DOUBLE_EQ(terrain.foot_tilt(0), found);
+  }
+}
+
+bool falls(const char* scenario, double x, bool adaptation) {
   const Scenario s = load_scenario(test::source_path(std::string("config/scenarios/") + scenario + ".yaml"),
-                                   {"terrain.0.x=1.0", "duration=10",
+                                   {"terrain.0.x=" + std::to_string(x), "duration=10",
                                     std::string("controller.terrain_adaptation.enabled=") + (adaptation ? "true" : "false")});
   return run_scenario(s, make_run_config(s), "").run.fell;
 }
@@ -86,8 +125,18 @@ bool falls(const char* scenario, bool adaptation) {
 // falls (measured: within 8–9 s of the start).
 TEST(TerrainAdaptation, UnexpectedStepUpAndSlopeAreWalkedOnlyWithTheAdaptation) {
   for (const char* scenario : {"lola-terrain-step-up", "lola-terrain-slope"}) {
-    EXPECT_FALSE(falls(scenario, true)) << scenario;
-    EXPECT_TRUE(falls(scenario, false)) << scenario;
+    EXPECT_FALSE(falls(scenario, 1.0, true)) << scenario;
+    EXPECT_TRUE(falls(scenario, 1.0, false)) << scenario;
+  }
+}
+
+// The same onto a 2 cm step down: at x = 1.0 m the foot lands wholly on the lower level (late
+// contact); at 1.25 m only the rear of its heel is on the upper level and the toe over the edge
+// (partial support). Without the adaptation both fall (measured: 5.9 and 6.4 s).
+TEST(TerrainAdaptation, UnexpectedStepDownIsWalkedOnlyWithTheAdaptation) {
+  for (double x : {1.0, 1.25}) {
+    EXPECT_FALSE(falls("lola-terrain-step-down", x, true)) << x;
+    EXPECT_TRUE(falls("lola-terrain-step-down", x, false)) << x;
   }
 }
 
