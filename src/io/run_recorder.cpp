@@ -54,8 +54,10 @@ void RunRecorder::record(const Simulation& sim, const SensorData& sensors, const
     start_x_ = base[0];
     start_y_ = base[1];
     start_yaw_ = yaw;
+    std::copy(base, base + 3, final_pos_);
     started_ = true;
   }
+  path_length_ += std::hypot(base[0] - final_pos_[0], base[1] - final_pos_[1]);
   std::copy(base, base + 3, final_pos_);
   final_yaw_ = yaw;
   max_tilt_ = std::max(max_tilt_, math::tilt_from_vertical(upper_body));
@@ -126,6 +128,7 @@ nlohmann::json RunRecorder::summary(const std::string& robot, const std::string&
   j["fall_time_s"] = result.fell ? nlohmann::json(result.fall_time) : nlohmann::json(nullptr);
   j["fall_reason"] = result.fall_reason;
   j["distance_m"] = distance;
+  j["path_length_m"] = path_length_;
   j["mean_speed_mps"] = result.sim_time > 0.0 ? distance / result.sim_time : 0.0;
   j["steps"] = touchdowns_;
   j["final_base_position"] = {final_pos_[0], final_pos_[1], final_pos_[2]};

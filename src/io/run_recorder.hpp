@@ -35,6 +35,7 @@ class RunRecorder final : public RunObserver {
   std::vector<Sample> samples_;
   double start_x_ = 0.0, start_y_ = 0.0, start_yaw_ = 0.0;
   double final_pos_[3] = {0.0, 0.0, 0.0};
+  double path_length_ = 0.0;  // [m] of the pelvis over the ground, sway included
   double final_yaw_ = 0.0;
   double max_tilt_ = 0.0;
   bool started_ = false;

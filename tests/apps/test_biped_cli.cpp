@@ -99,7 +99,7 @@ TEST(BipedRun, WritesSummaryAndLogWithTheContractKeys) {
   ASSERT_EQ(o.status, 0) << o.err;
   const auto summary = nlohmann::json::parse(slurp(out / "summary.json"));
   for (const char* key : {"robot", "scenario", "sim_time_s", "wall_time_s", "realtime_factor", "fell", "fall_time_s",
-                          "distance_m", "mean_speed_mps", "steps", "final_base_position", "heading_change_rad",
+                          "distance_m", "path_length_m", "mean_speed_mps", "steps", "final_base_position", "heading_change_rad",
                           "upper_body_tilt_deg", "controller_cycle_us"}) {
     EXPECT_TRUE(summary.contains(key)) << key;
   }
