@@ -17,7 +17,6 @@ build: configure
 	@cmake --build $(BUILD_DIR) -j$(JOBS)
 
 test: build
-	@scripts/install-experiment-deps.sh
 	@cd $(BUILD_DIR) && ctest --output-on-failure -j$(JOBS)
 
 demo: build
@@ -30,7 +29,6 @@ bench: build
 
 # The paper's experiments (experiments/README.md): runs into out/experiments/, figures into docs/figures/.
 experiments: build
-	@scripts/install-experiment-deps.sh
 	@BIPED=$(BUILD_DIR)/biped experiments/run.sh
 
 clean:

@@ -1,14 +1,13 @@
 #!/usr/bin/env bash
-# The experiment plots work on a short run: a 2 s walk (pushed once) through `biped run`, then every
+# The experiment plots work on a short run: a 2.5 s walk (pushed twice) through `biped run`, then every
 # plot command of experiments/plot.py on it; each figure must exist and be more than a blank canvas.
-# Skipped (exit 77) when /usr/bin/python3 has no matplotlib (scripts/install-experiment-deps.sh,
-# which `make experiments` runs, installs it).
+# /usr/bin/python3 needs matplotlib and PyYAML (scripts/install-deps.sh, run by every make target).
 # Usage: test_plot.sh BIPED_BINARY SOURCE_DIR
 set -euo pipefail
 biped=$1 src=$2
 export PYTHONDONTWRITEBYTECODE=1
 if ! /usr/bin/python3 -c 'import matplotlib, yaml' 2>/dev/null; then
-  echo "SKIP: /usr/bin/python3 lacks matplotlib/yaml (scripts/install-experiment-deps.sh)"; exit 77
+  echo "FAIL: /usr/bin/python3 lacks matplotlib/yaml (run scripts/install-deps.sh)"; exit 1
 fi
 tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
 cat > "$tmp/short.yaml" <<'YAML'
