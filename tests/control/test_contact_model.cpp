@@ -10,7 +10,7 @@
 #include <algorithm>
 #include <cstdio>
 
-#include "control/walking_controller.hpp"
+#include "kinematic_loop.hpp"
 #include "test_support.hpp"
 
 namespace biped {
@@ -80,31 +80,7 @@ TEST_P(ContactModelTest, FloatingBaseHeightColumnIsTheStiffness) {
 }
 
 // The walking controller on its own kinematic loop (as in test_walking_controller.cpp).
-struct KinematicLoop {
-  RobotModel model;
-  WalkingController controller;
-  SensorData sensors;
-  JointCommand out;
-
-  static WalkingControllerParams open_loop() {
-    WalkingControllerParams p;
-    p.stabilizer = false;
-    p.sensor_limits.frozen_cycles = 0;
-    return p;
-  }
-  explicit KinematicLoop(const std::string& robot)
-      : model(test::load_model(robot)), controller(model, open_loop()), sensors(model.num_joints()), out(model.num_joints()) {
-    sensors.joint_position = model.stand_pose();
-    sensors.imu_acceleration = Eigen::Vector3d(0, 0, 9.81);
-    for (Wrench& w : sensors.foot_wrench) w.force.z() = 0.5 * model.weight_above_sensors();
-    controller.reset(sensors);
-  }
-  void cycle(double t, const WalkCommand& command) {
-    sensors.time = t;
-    controller.step(sensors, command, out);
-    sensors.joint_position = out.position;
-  }
-};
+using test::KinematicLoop;
 
 // Lowest and highest sole corner of a foot in the world at the configuration last passed to data.
 std::pair<double, double> corner_heights(const RobotModel& model, const RobotData& data, Side side) {
