@@ -54,8 +54,9 @@ void place_contact_elements(const FootInfo& foot, const ContactModelParams& para
 // or on the toe segment, whichever the measured CoP lies over (neither can carry a CoP beyond the
 // joint; without params.toe_contact always the heel); the other segment is out of contact as a
 // whole: of a real, evenly stiff pad tilted against the ground only a sliver at the joint touches,
-// while its lumped corners would keep half its stiffness on the joint line. Bent down (V): on the heel's rear edge and the toe's tip, the
-// elements within the deflection plus the tolerance of that plane. Bent less: every element.
+// while its lumped corners would keep half its stiffness on the joint line. Bent down (V): on the
+// heel's rear edge and the toe's tip, the elements within the deflection plus the tolerance of that
+// plane. Bent less: every element.
 void contact_elements(const FootInfo& foot, const ContactModelParams& params, double toe_angle, const Wrench& measured,
                       ContactElements& elements) {
   place_contact_elements(foot, params, toe_angle, elements);
