@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 
-#include "control/contact_model.hpp"
 #include "math/rotations.hpp"
 
 namespace biped {
@@ -13,13 +12,33 @@ Eigen::Vector3d controlled(const Wrench& w) { return {w.force.z(), w.torque.x(),
 
 }  // namespace
 
-Stabilizer::Stabilizer(const RobotModel& model, const StabilizerParams& params) : model_(model), params_(params) {
+Stabilizer::Stabilizer(const RobotModel& model, const StabilizerParams& params)
+    : model_(model),
+      params_(params),
+      contact_params_{params.contact_stiffness, params.heel_stiffness_share, params.contact_tolerance,
+                      params.toe_contact} {
   for (Side side : kSides) {
-    const Eigen::Matrix3d K = point_contact_stiffness(model.foot(side), params.contact_stiffness);
-    stiffness_[index_of(side)] = K;
-    compliance_[index_of(side)] = K.inverse();
+    const int k = index_of(side);
+    place_contact_elements(model.foot(side), contact_params_, 0.0, elements_[k]);
+    stiffness_[k] = point_contact_stiffness(elements_[k]);
+    compliance_[k] = stiffness_[k].inverse();
   }
   reset();
+}
+
+void Stabilizer::update_contact_model(const Eigen::VectorXd& joint_position, const std::array<Wrench, 2>& measured) {
+  for (Side side : kSides) {
+    const int k = index_of(side);
+    const FootInfo& foot = model_.foot(side);
+    const int toe = foot.num_segments > 1 ? foot.segments[1].joint : -1;
+    biped::contact_elements(foot, contact_params_, toe >= 0 ? joint_position[toe] : 0.0, measured[k], elements_[k]);
+    // The support plane's edges always touch, so K is regular; the check keeps NaN out regardless.
+    const Eigen::Matrix3d K = point_contact_stiffness(elements_[k]);
+    const Eigen::Matrix3d compliance = K.inverse();
+    if (!compliance.allFinite()) continue;
+    stiffness_[k] = K;
+    compliance_[k] = compliance;
+  }
 }
 
 void Stabilizer::reset() {
