@@ -96,8 +96,9 @@ void Stabilizer::hybrid_position_force_control(int k, double dt, const Wrench& m
   const Eigen::Vector3d error = lambda_d - controlled(measured);
   Eigen::Vector3d& integral = force_error_integral_[k];
   integral += dt * (a * error - (1.0 - a) * params_.position_gain * integral);
-  const Eigen::Vector3d force_law = params_.feedforward_gain * lambda_d_rate + params_.force_gain * error +
-                                    params_.force_integral_gain * integral;  // eq. (14) with K_λ,INT
+  Eigen::Vector3d force_law = params_.feedforward_gain * lambda_d_rate + params_.force_gain * error +
+                              params_.force_integral_gain * integral;  // eq. (14) with K_λ,INT
+  force_law[2] *= params_.pitch_gain_scale;
   mod.rate = -(compliance_[k] / stiffness_scale_) * (a * force_law) - (1.0 - a) * params_.position_gain * mod.offset;
   mod.offset += mod.rate * dt;
   mod.offset[0] = std::clamp(mod.offset[0], -params_.max_height, params_.max_height);

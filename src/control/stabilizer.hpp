@@ -27,6 +27,9 @@ struct StabilizerParams {
   double com_rate_gain = 30.0;       // K_D [N·m·s/m]
   double force_gain = 20.0;          // K_λ [1/s]
   double feedforward_gain = 1.0;     // K_λ,ff
+  // Scale of eq. (14) on the pitch torque T_y: keeps the pitch loop's gain when the contact model's
+  // pitch stiffness differs from the one the gains were tuned with (K_λ acts through −K⁻¹).
+  double pitch_gain_scale = 1.0;
   double position_gain = 5.0;        // K_λx [1/s]: return of the modification without contact
   double contact_stiffness = 4.0e5;  // C of eq. (11) per foot [N/m]
   double heel_stiffness_share = 0.714; // share of C on the heel segment's elements (feet with a toe segment)

@@ -75,6 +75,24 @@ TEST(Stabilizer, ForceControlTiltsTheFootToReduceTheTorqueError) {
   EXPECT_NEAR(torque_rate[0], 0.0, 1e-6);
 }
 
+// pitch_gain_scale scales the pitch torque's rate alone.
+TEST(Stabilizer, PitchGainScaleActsOnThePitchTorqueOnly) {
+  const RobotModel model = test::load_model("johnnie");
+  StabilizerParams params;
+  params.feedforward_gain = 0.0;
+  params.contact_filter_time = 1e-6;
+  params.pitch_gain_scale = 0.5;
+  Stabilizer stabilizer(model, params);
+  const auto ideal = standing_wrenches(400.0);
+  auto measured = ideal;
+  measured[0].torque.y() = -10.0;
+  measured[0].torque.x() = 10.0;
+  stabilizer.step(0.001, ideal, {true, true}, {0.5, 0.5}, measured, Eigen::Quaterniond::Identity(), Eigen::Vector3d::Zero());
+  const Eigen::Vector3d torque_rate = -stabilizer.contact_stiffness_matrix()[0] * stabilizer.modification()[0].rate;
+  EXPECT_NEAR(torque_rate[2], 0.5 * params.force_gain * 10.0, 1e-6);
+  EXPECT_NEAR(torque_rate[1], -params.force_gain * 10.0, 1e-6);
+}
+
 // A flat foot on a ground of stiffness `true_stiffness` (the point-contact model of eq. 11 with the
 // default elements): the measured wrench is the ideal one minus K_true times the foot's modification.
 Wrench foot_on_ground(const RobotModel& model, Side side, double true_stiffness, const Wrench& ideal,
