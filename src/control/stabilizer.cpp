@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 
-#include "control/contact_model.hpp"
 #include "math/rotations.hpp"
 
 namespace biped {
@@ -13,13 +12,33 @@ Eigen::Vector3d controlled(const Wrench& w) { return {w.force.z(), w.torque.x(),
 
 }  // namespace
 
-Stabilizer::Stabilizer(const RobotModel& model, const StabilizerParams& params) : model_(model), params_(params) {
+Stabilizer::Stabilizer(const RobotModel& model, const StabilizerParams& params)
+    : model_(model),
+      params_(params),
+      contact_params_{params.contact_stiffness, params.heel_stiffness_share, params.contact_tolerance,
+                      params.toe_contact} {
   for (Side side : kSides) {
-    const Eigen::Matrix3d K = point_contact_stiffness(model.foot(side), params.contact_stiffness);
-    stiffness_[index_of(side)] = K;
-    compliance_[index_of(side)] = K.inverse();
+    const int k = index_of(side);
+    place_contact_elements(model.foot(side), contact_params_, 0.0, elements_[k]);
+    stiffness_[k] = point_contact_stiffness(elements_[k]);
+    compliance_[k] = stiffness_[k].inverse();
   }
   reset();
+}
+
+void Stabilizer::update_contact_model(const Eigen::VectorXd& joint_position, const std::array<Wrench, 2>& measured) {
+  for (Side side : kSides) {
+    const int k = index_of(side);
+    const FootInfo& foot = model_.foot(side);
+    const int toe = foot.num_segments > 1 ? foot.segments[1].joint : -1;
+    biped::contact_elements(foot, contact_params_, toe >= 0 ? joint_position[toe] : 0.0, measured[k], elements_[k]);
+    // The support plane's edges always touch, so K is regular; the check keeps NaN out regardless.
+    const Eigen::Matrix3d K = point_contact_stiffness(elements_[k]);
+    const Eigen::Matrix3d compliance = K.inverse();
+    if (!compliance.allFinite()) continue;
+    stiffness_[k] = K;
+    compliance_[k] = compliance;
+  }
 }
 
 void Stabilizer::reset() {
@@ -77,8 +96,9 @@ void Stabilizer::hybrid_position_force_control(int k, double dt, const Wrench& m
   const Eigen::Vector3d error = lambda_d - controlled(measured);
   Eigen::Vector3d& integral = force_error_integral_[k];
   integral += dt * (a * error - (1.0 - a) * params_.position_gain * integral);
-  const Eigen::Vector3d force_law = params_.feedforward_gain * lambda_d_rate + params_.force_gain * error +
-                                    params_.force_integral_gain * integral;  // eq. (14) with K_λ,INT
+  Eigen::Vector3d force_law = params_.feedforward_gain * lambda_d_rate + params_.force_gain * error +
+                              params_.force_integral_gain * integral;  // eq. (14) with K_λ,INT
+  force_law[2] *= params_.pitch_gain_scale;
   mod.rate = -(compliance_[k] / stiffness_scale_) * (a * force_law) - (1.0 - a) * params_.position_gain * mod.offset;
   mod.offset += mod.rate * dt;
   mod.offset[0] = std::clamp(mod.offset[0], -params_.max_height, params_.max_height);

@@ -5,7 +5,8 @@
 //     relative to the stance foot (encoders and IMU, control/state_estimation);
 //   hybrid position/force control, eqs. (11)–(20): per foot, the normal force and the two contact-
 //     plane torques are tracked by modifying the foot's height and tilt, through the explicit
-//     point-contact model of eq. (11) (control/contact_model: the four sole corners, stiffness C/4 each).
+//     point-contact model of eq. (11) (control/contact_model: the corners of each sole segment, for
+//     LOLA heel and toe, placed with the measured toe angle; K from the elements in contact).
 // With the point-contact model the map S_λ∇_qλ(S̄_x∇_q x)^† of eq. (20) is, per foot, minus the
 // 3×3 contact stiffness K of (z, φ_x, φ_y) → (F_z, T_x, T_y); this implementation uses that small
 // matrix (docs/stabilizer.md). Feet without contact blend to position control (α_λ → 0), which
@@ -13,6 +14,7 @@
 #include <Eigen/Core>
 #include <array>
 
+#include "control/contact_model.hpp"
 #include "control/interface.hpp"
 #include "model/robot_model.hpp"
 
@@ -25,8 +27,14 @@ struct StabilizerParams {
   double com_rate_gain = 30.0;       // K_D [N·m·s/m]
   double force_gain = 20.0;          // K_λ [1/s]
   double feedforward_gain = 1.0;     // K_λ,ff
+  // Scale of eq. (14) on the pitch torque T_y: keeps the pitch loop's gain when the contact model's
+  // pitch stiffness differs from the one the gains were tuned with (K_λ acts through −K⁻¹).
+  double pitch_gain_scale = 1.0;
   double position_gain = 5.0;        // K_λx [1/s]: return of the modification without contact
   double contact_stiffness = 4.0e5;  // C of eq. (11) per foot [N/m]
+  double heel_stiffness_share = 0.714; // share of C on the heel segment's elements (feet with a toe segment)
+  double contact_tolerance = 5.0e-4; // [m] elements lifted less than this plus the sole's deflection touch
+  bool toe_contact = false;          // recognize rolling on the toe (CoP ahead of the toe joint); docs/stabilizer.md
   double cop_margin = 0.02;          // [m] the desired CoP stays this far inside the sole
   double contact_filter_time = 0.02; // [s] first-order filter of the measured normal force
   double contact_force_low = 30.0;   // [N] filtered normal force: force control starts above ...
@@ -66,9 +74,17 @@ class Stabilizer {
             const Eigen::Vector2d& com_error = Eigen::Vector2d::Zero(),
             const Eigen::Vector2d& com_rate_error = Eigen::Vector2d::Zero());
 
+  // eq. (11) for this cycle, before step(): each foot's contact elements placed with the measured
+  // toe angle (encoders, RobotModel::joints() order) and their contact state from the F/T readings
+  // (control/contact_model); K and K⁻¹ of eq. (20) follow. Without it the feet are flat, every
+  // element in contact.
+  void update_contact_model(const Eigen::VectorXd& joint_position, const std::array<Wrench, 2>& measured);
+
   const std::array<Wrench, 2>& desired() const { return desired_; }
   const std::array<FootModification, 2>& modification() const { return modification_; }
   const std::array<double, 2>& force_control_share() const { return alpha_; }
+  const std::array<ContactElements, 2>& contact_elements() const { return elements_; }
+  const std::array<Eigen::Matrix3d, 2>& contact_stiffness_matrix() const { return stiffness_; }
   // The contact stiffness in use: C, or its on-line estimate [N/m].
   double contact_stiffness() const;
 
@@ -85,6 +101,8 @@ class Stabilizer {
 
   const RobotModel& model_;
   StabilizerParams params_;
+  ContactModelParams contact_params_;
+  std::array<ContactElements, 2> elements_;
   std::array<Eigen::Matrix3d, 2> stiffness_;  // K per foot, eq. (11)
   std::array<Eigen::Matrix3d, 2> compliance_; // K⁻¹
   std::array<Wrench, 2> desired_, previous_desired_;

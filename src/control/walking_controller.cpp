@@ -266,6 +266,7 @@ void WalkingController::step(const SensorData& raw_sensors, const WalkCommand& c
   if (params_.stabilizer && use_sensors) {
     Eigen::Vector2d com_err, com_rate_err;
     com_error(sensors, sample_, com_err, com_rate_err);
+    stabilizer_.update_contact_model(sensors.joint_position, sensors.foot_wrench);
     stabilizer_.step(params_.rmrc.dt, sample_.contact_wrench, {sample_.feet[0].in_contact, sample_.feet[1].in_contact},
                      sample_.load_share, sensors.foot_wrench, sensors.imu_orientation, sensors.imu_angular_rate,
                      com_err, com_rate_err);

@@ -49,7 +49,9 @@ void read_simulation(const YamlReader& r, const YAML::Node& sim, SimulationParam
 void read_stabilization(const YamlReader& r, const YAML::Node& n, StabilizerParams& p) {
   const std::string where = "controller.stabilization";
   r.expect_keys(n, where, {"tilt_gain", "tilt_rate_gain", "com_gain", "com_rate_gain", "force_gain", "feedforward_gain",
-                           "position_gain", "contact_stiffness", "cop_margin", "contact_filter_time",
+                           "pitch_gain_scale", "position_gain", "contact_stiffness", "heel_stiffness_share", "contact_tolerance",
+                           "toe_contact",
+                           "cop_margin", "contact_filter_time",
                            "contact_force_low", "contact_force_high", "max_tilt", "max_height",
                            "force_integral_gain", "stiffness_adaptation", "adaptation_time",
                            "adaptation_min_scale", "adaptation_max_scale"});
@@ -60,8 +62,15 @@ void read_stabilization(const YamlReader& r, const YAML::Node& n, StabilizerPara
   p.com_rate_gain = r.non_negative_or(n, where, "com_rate_gain", p.com_rate_gain);
   p.force_gain = r.non_negative_or(n, where, "force_gain", p.force_gain);
   p.feedforward_gain = r.non_negative_or(n, where, "feedforward_gain", p.feedforward_gain);
+  p.pitch_gain_scale = r.non_negative_or(n, where, "pitch_gain_scale", p.pitch_gain_scale);
   p.position_gain = r.positive_or(n, where, "position_gain", p.position_gain);
   p.contact_stiffness = r.positive_or(n, where, "contact_stiffness", p.contact_stiffness);
+  p.heel_stiffness_share = r.positive_or(n, where, "heel_stiffness_share", p.heel_stiffness_share);
+  if (p.heel_stiffness_share >= 1.0) {
+    r.fail(n["heel_stiffness_share"], where + ".heel_stiffness_share", "must be below 1 (the toe elements need stiffness)");
+  }
+  p.contact_tolerance = r.non_negative_or(n, where, "contact_tolerance", p.contact_tolerance);
+  p.toe_contact = r.boolean_or(n, where, "toe_contact", p.toe_contact);
   p.cop_margin = r.non_negative_or(n, where, "cop_margin", p.cop_margin);
   p.contact_filter_time = r.positive_or(n, where, "contact_filter_time", p.contact_filter_time);
   p.contact_force_low = r.non_negative_or(n, where, "contact_force_low", p.contact_force_low);

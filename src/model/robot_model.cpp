@@ -26,18 +26,40 @@ bool ends_with(std::string_view s, std::string_view suffix) {
 }
 
 // Sole rectangle of a foot in its sensor frame, from the box geoms named "*_sole" below the
-// sensor, evaluated with every joint at zero.
-void measure_sole(const mjModel* m, mjData* d, FootInfo& foot, const std::string& path,
-                  const char* side) {
+// sensor, evaluated with every joint at zero; and its segments, one per body carrying sole geoms:
+// the foot body itself first, then at most one toe body hinged to it.
+void measure_sole(const mjModel* m, mjData* d, const std::vector<JointInfo>& joints, FootInfo& foot,
+                  const std::string& path, const char* side) {
+  if (foot.sole_geoms.empty()) {
+    throw ModelError(path + ": no box geom named '*_sole' below the sensor of the " + side + " foot");
+  }
   const Eigen::Vector3d site_pos(d->site_xpos + 3 * foot.sensor_site);
   const Eigen::Matrix3d site_rot =
       Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(d->site_xmat + 9 * foot.sensor_site);
-  double x_min = std::numeric_limits<double>::infinity(), x_max = -x_min;
-  double y_min = x_min, y_max = -x_min, z_min = x_min;
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  std::array<int, FootInfo::kMaxSegments> segment_body;
+  segment_body.fill(-1);
+  std::array<SoleSegment, FootInfo::kMaxSegments> segments;
+  for (SoleSegment& s : segments) {
+    s.x_min = s.y_min = s.z = inf;
+    s.x_max = s.y_max = -inf;
+  }
+  int count = 0;
   for (int g : foot.sole_geoms) {
     if (m->geom_type[g] != mjGEOM_BOX) {
       throw ModelError(path + ": sole geom '" + mj_id2name(m, mjOBJ_GEOM, g) + "' must be a box");
     }
+    const int body = m->geom_bodyid[g];
+    int k = 0;
+    while (k < count && segment_body[k] != body) ++k;
+    if (k == count) {
+      if (count == FootInfo::kMaxSegments) {
+        throw ModelError(path + ": the " + side + " foot's sole geoms are on more than " +
+                         std::to_string(FootInfo::kMaxSegments) + " bodies");
+      }
+      segment_body[count++] = body;
+    }
+    SoleSegment& s = segments[k];
     const Eigen::Vector3d half(m->geom_size + 3 * g);
     const Eigen::Vector3d center(d->geom_xpos + 3 * g);
     const Eigen::Matrix3d rot =
@@ -46,21 +68,46 @@ void measure_sole(const mjModel* m, mjData* d, FootInfo& foot, const std::string
       const Eigen::Vector3d local((corner & 1 ? 1 : -1) * half.x(), (corner & 2 ? 1 : -1) * half.y(),
                                   (corner & 4 ? 1 : -1) * half.z());
       const Eigen::Vector3d in_sensor = site_rot.transpose() * (center + rot * local - site_pos);
-      x_min = std::min(x_min, in_sensor.x());
-      x_max = std::max(x_max, in_sensor.x());
-      y_min = std::min(y_min, in_sensor.y());
-      y_max = std::max(y_max, in_sensor.y());
-      z_min = std::min(z_min, in_sensor.z());
+      s.x_min = std::min(s.x_min, in_sensor.x());
+      s.x_max = std::max(s.x_max, in_sensor.x());
+      s.y_min = std::min(s.y_min, in_sensor.y());
+      s.y_max = std::max(s.y_max, in_sensor.y());
+      s.z = std::min(s.z, in_sensor.z());
     }
   }
-  if (foot.sole_geoms.empty()) {
-    throw ModelError(path + ": no box geom named '*_sole' below the sensor of the " + side + " foot");
+  // The segment rigid with the sensor comes first; any other must hang on one toe hinge below it.
+  const auto rigid = std::find(segment_body.begin(), segment_body.begin() + count, foot.body);
+  if (rigid == segment_body.begin() + count) {
+    throw ModelError(path + ": the " + side + " foot has no '*_sole' geom on body '" +
+                     mj_id2name(m, mjOBJ_BODY, foot.body) + "'");
   }
-  foot.sole_x_min = x_min;
-  foot.sole_x_max = x_max;
-  foot.sole_y_min = y_min;
-  foot.sole_y_max = y_max;
-  foot.sole_z = z_min;
+  std::iter_swap(segment_body.begin(), rigid);
+  std::swap(segments[0], segments[rigid - segment_body.begin()]);
+  for (int k = 1; k < count; ++k) {
+    const int body = segment_body[k];
+    const char* name = mj_id2name(m, mjOBJ_BODY, body);
+    if (m->body_parentid[body] != foot.body || m->body_jntnum[body] != 1) {
+      throw ModelError(path + ": sole body '" + std::string(name) + "' must hang on one hinge from '" +
+                       mj_id2name(m, mjOBJ_BODY, foot.body) + "'");
+    }
+    const int mj_joint = m->body_jntadr[body];
+    const auto joint = std::find_if(joints.begin(), joints.end(), [&](const JointInfo& j) { return j.mj_joint == mj_joint; });
+    SoleSegment& s = segments[k];
+    s.joint = static_cast<int>(joint - joints.begin());
+    s.axis_point = site_rot.transpose() * (Eigen::Vector3d(d->xanchor + 3 * mj_joint) - site_pos);
+    s.axis = site_rot.transpose() * Eigen::Vector3d(d->xaxis + 3 * mj_joint);
+  }
+  foot.segments = segments;
+  foot.num_segments = count;
+  foot.sole_x_min = foot.sole_y_min = foot.sole_z = inf;
+  foot.sole_x_max = foot.sole_y_max = -inf;
+  for (int k = 0; k < count; ++k) {
+    foot.sole_x_min = std::min(foot.sole_x_min, segments[k].x_min);
+    foot.sole_x_max = std::max(foot.sole_x_max, segments[k].x_max);
+    foot.sole_y_min = std::min(foot.sole_y_min, segments[k].y_min);
+    foot.sole_y_max = std::max(foot.sole_y_max, segments[k].y_max);
+    foot.sole_z = std::min(foot.sole_z, segments[k].z);
+  }
 }
 
 }  // namespace
@@ -153,7 +200,9 @@ RobotModel RobotModel::adopt(mjModel* compiled, const std::string& mjcf_path, do
 
   RobotData data(model);
   mj_kinematics(m, data.mj());
-  for (Side side : kSides) measure_sole(m, data.mj(), model.feet_[index_of(side)], mjcf_path, name_of(side));
+  for (Side side : kSides) {
+    measure_sole(m, data.mj(), model.joints_, model.feet_[index_of(side)], mjcf_path, name_of(side));
+  }
   return model;
 }
 

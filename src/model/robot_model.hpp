@@ -37,9 +37,22 @@ struct JointInfo {
   double torque_limit = 0.0;  // [N·m] from the actuator's ctrlrange (0: no actuator)
 };
 
+// A rigid part of a sole: the rectangle of the box geoms "*_sole" of one body, in the sensor frame
+// with every joint at zero. A segment on a toe joint turns with it about the joint's axis.
+struct SoleSegment {
+  double x_min = 0.0, x_max = 0.0, y_min = 0.0, y_max = 0.0;
+  double z = 0.0;  // height of the segment's sole plane in the sensor frame
+  int joint = -1;  // index in RobotModel::joints() of the toe joint carrying it (-1: rigid with the sensor)
+  Eigen::Vector3d axis_point = Eigen::Vector3d::Zero();  // the joint's axis in the sensor frame
+  Eigen::Vector3d axis = Eigen::Vector3d::UnitY();
+};
+
 // A foot below its force/torque sensor. The sole outline is the flat-foot support rectangle,
 // expressed in the sensor frame (for LOLA: heel and toe segment together, toe joint at zero).
+// `segments` are its rigid parts: first the one rigid with the sensor (LOLA's heel segment,
+// JOHNNIE's whole sole), then LOLA's toe segment.
 struct FootInfo {
+  static constexpr int kMaxSegments = 2;
   int body = -1;         // body directly below the F/T sensor
   int sensor_site = -1;  // F/T sensor frame
   std::vector<int> bodies_below_sensor;
@@ -48,6 +61,8 @@ struct FootInfo {
   double sole_x_min = 0.0, sole_x_max = 0.0;  // sole rectangle in the sensor frame [m]
   double sole_y_min = 0.0, sole_y_max = 0.0;
   double sole_z = 0.0;  // height of the sole plane in the sensor frame (negative: below)
+  std::array<SoleSegment, kMaxSegments> segments;
+  int num_segments = 0;
 };
 
 class RobotModel {

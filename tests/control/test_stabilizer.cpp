@@ -3,6 +3,8 @@
 // and off.
 #include "control/stabilizer.hpp"
 
+#include "control/contact_model.hpp"
+
 #include <gtest/gtest.h>
 
 #include "io/robot_config.hpp"
@@ -73,24 +75,53 @@ TEST(Stabilizer, ForceControlTiltsTheFootToReduceTheTorqueError) {
   EXPECT_NEAR(torque_rate[0], 0.0, 1e-6);
 }
 
-// A foot on a ground of stiffness `true_stiffness` (the point-contact model of eq. 11): the measured
-// wrench is the ideal one minus K_true times the foot's modification.
+// pitch_gain_scale scales the pitch torque's rate alone.
+TEST(Stabilizer, PitchGainScaleActsOnThePitchTorqueOnly) {
+  const RobotModel model = test::load_model("johnnie");
+  StabilizerParams params;
+  params.feedforward_gain = 0.0;
+  params.contact_filter_time = 1e-6;
+  params.pitch_gain_scale = 0.5;
+  Stabilizer stabilizer(model, params);
+  const auto ideal = standing_wrenches(400.0);
+  auto measured = ideal;
+  measured[0].torque.y() = -10.0;
+  measured[0].torque.x() = 10.0;
+  stabilizer.step(0.001, ideal, {true, true}, {0.5, 0.5}, measured, Eigen::Quaterniond::Identity(), Eigen::Vector3d::Zero());
+  const Eigen::Vector3d torque_rate = -stabilizer.contact_stiffness_matrix()[0] * stabilizer.modification()[0].rate;
+  EXPECT_NEAR(torque_rate[2], 0.5 * params.force_gain * 10.0, 1e-6);
+  EXPECT_NEAR(torque_rate[1], -params.force_gain * 10.0, 1e-6);
+}
+
+// A flat foot on a ground of stiffness `true_stiffness` (the point-contact model of eq. 11 with the
+// default elements): the measured wrench is the ideal one minus K_true times the foot's modification.
 Wrench foot_on_ground(const RobotModel& model, Side side, double true_stiffness, const Wrench& ideal,
                       const FootModification& m) {
-  const FootInfo& foot = model.foot(side);
-  Eigen::Matrix3d K = Eigen::Matrix3d::Zero();
-  for (double x : {foot.sole_x_min, foot.sole_x_max}) {
-    for (double y : {foot.sole_y_min, foot.sole_y_max}) {
-      const Eigen::Vector3d g(1.0, y, -x);
-      K += 0.25 * true_stiffness * g * g.transpose();
-    }
-  }
+  ContactModelParams ground;
+  ground.stiffness = true_stiffness;
+  const Eigen::Matrix3d K = point_contact_stiffness(model.foot(side), ground);
   const Eigen::Vector3d push = -K * m.offset;
   Wrench w = ideal;
   w.force.z() += push[0];
   w.torque.x() += push[1];
   w.torque.y() += push[2];
   return w;
+}
+
+// eq. (11) from the sensors: LOLA's left toe bent up 0.1 rad (encoder) under the load of a flat
+// heel: the left foot's K is the heel segment's alone; the right foot, toe at zero, keeps all eight
+// elements.
+TEST(Stabilizer, MeasuredToeAngleLeavesTheHeelElements) {
+  const RobotModel model = test::load_model("lola");
+  const StabilizerParams params;
+  Stabilizer stabilizer(model, params);
+  Eigen::VectorXd joints = model.stand_pose();
+  joints[model.foot(Side::Left).segments[1].joint] = -0.1;
+  stabilizer.update_contact_model(joints, standing_wrenches(500.0));
+  EXPECT_DOUBLE_EQ(stabilizer.contact_stiffness_matrix()[0](0, 0), params.heel_stiffness_share * params.contact_stiffness);
+  EXPECT_DOUBLE_EQ(stabilizer.contact_stiffness_matrix()[1](0, 0), params.contact_stiffness);
+  const ContactElements& left = stabilizer.contact_elements()[0];
+  for (int i = 0; i < left.count; ++i) EXPECT_EQ(left.in_contact[i], left.segment[i] == 0);
 }
 
 // Tracks a normal force that ramps up by 200 N/s from the steady state; returns the final error.

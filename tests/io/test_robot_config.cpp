@@ -79,6 +79,16 @@ TEST(RobotConfig, StabilizationKeysMergeAndAreChecked) {
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("controller.stabilization.contact_force_high"), std::string::npos) << e.what();
   }
+  for (const char* bad : {"{stabilization: {heel_stiffness_share: 1.0}}", "{stabilization: {heel_stiffness_share: 0}}",
+                          "{stabilization: {contact_tolerance: -0.001}}", "{stabilization: {toe_contact: 3}}"}) {
+    s.controller = YAML::Load(bad);
+    try {
+      make_run_config(s);
+      FAIL() << bad;
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("controller.stabilization."), std::string::npos) << e.what();
+    }
+  }
   s.controller = YAML::Load("{stabilization: {tilt_gian: 1}}");
   EXPECT_THROW(make_run_config(s), InputError);
   s.controller = YAML::Load("{sensor_limits: {frozen_cycles: -1}}");

@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <map>
 
 #include "test_support.hpp"
@@ -73,6 +74,34 @@ TEST_P(ModelTest, MatchesDataSheet) {
               (model.total_mass() - model.foot(Side::Left).mass_below_sensor -
                model.foot(Side::Right).mass_below_sensor) * 9.81,
               1e-9);
+}
+
+// The sole segments (robots.md): LOLA's heel segment rigid with the sensor and a 0.08 m toe segment
+// on the toe joint 0.20 m ahead of the heel edge (axis along y); JOHNNIE's one rigid sole.
+TEST(RobotModel, SoleSegments) {
+  const RobotModel lola = test::load_model("lola");
+  for (Side side : kSides) {
+    const FootInfo& foot = lola.foot(side);
+    ASSERT_EQ(foot.num_segments, 2);
+    const SoleSegment &heel = foot.segments[0], &toe = foot.segments[1];
+    EXPECT_EQ(heel.joint, -1);
+    EXPECT_EQ(lola.joints()[toe.joint].name, std::string(name_of(side)) + "_toe");
+    EXPECT_NEAR(heel.x_min, foot.sole_x_min, 1e-9);
+    EXPECT_NEAR(toe.x_max, foot.sole_x_max, 1e-9);
+    EXPECT_NEAR(toe.x_max - toe.x_min, 0.08, 1e-6);
+    EXPECT_NEAR(toe.axis_point.x() - heel.x_min, 0.20, 1e-6);
+    EXPECT_NEAR(heel.x_max, toe.x_min, 1e-6);
+    EXPECT_NEAR(std::abs(toe.axis.y()), 1.0, 1e-9);
+    EXPECT_NEAR(heel.z, toe.z, 1e-9) << "one flat sole at toe angle zero";
+  }
+  const RobotModel johnnie = test::load_model("johnnie");
+  for (Side side : kSides) {
+    const FootInfo& foot = johnnie.foot(side);
+    ASSERT_EQ(foot.num_segments, 1);
+    EXPECT_EQ(foot.segments[0].joint, -1);
+    EXPECT_EQ(foot.segments[0].x_min, foot.sole_x_min);
+    EXPECT_EQ(foot.segments[0].y_max, foot.sole_y_max);
+  }
 }
 
 const std::vector<std::string> kLegJoints = {"hip_yaw", "hip_roll", "hip_pitch", "knee", "ankle_pitch", "ankle_roll"};
