@@ -1,5 +1,8 @@
 #pragma once
-// Shared helpers for the tests: model paths and a standing closed-loop run.
+// Shared helpers for the tests: source and model paths, the models, fresh output directories.
+#include <unistd.h>
+
+#include <filesystem>
 #include <string>
 
 #include "model/robot_model.hpp"
@@ -10,6 +13,15 @@ inline std::string source_path(const std::string& relative) { return std::string
 inline std::string model_path(const std::string& robot) { return source_path("models/" + robot + "/" + robot + ".xml"); }
 inline RobotModel load_model(const std::string& robot) {
   return RobotModel::load(model_path(robot), 5.0 * M_PI / 180.0);
+}
+
+// An empty directory under the system's temp directory, unique to this test process.
+inline std::filesystem::path fresh_dir(const char* name) {
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / ("biped-test-" + std::string(name) + "-" + std::to_string(::getpid()));
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir;
 }
 
 }  // namespace biped::test

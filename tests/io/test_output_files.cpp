@@ -5,18 +5,14 @@
 #include <filesystem>
 
 #include "io/yaml_reader.hpp"
+#include "test_support.hpp"
 
 namespace fs = std::filesystem;
 
 namespace biped {
 namespace {
 
-fs::path fresh_dir(const char* name) {
-  const fs::path dir = fs::temp_directory_path() / ("biped-test-" + std::string(name) + "-" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
+using test::fresh_dir;
 
 TEST(AtomicOutputFile, NothingAppearsUnlessCommitted) {
   const fs::path dir = fresh_dir("atomic");

@@ -17,6 +17,7 @@
 #include "io/scenario.hpp"
 #include "io/scenario_runner.hpp"
 #include "io/yaml_reader.hpp"
+#include "test_support.hpp"
 #include "sim/simulation.hpp"
 
 namespace fs = std::filesystem;
@@ -24,12 +25,7 @@ namespace fs = std::filesystem;
 namespace biped {
 namespace {
 
-fs::path fresh_dir(const char* name) {
-  const fs::path dir = fs::temp_directory_path() / ("biped-test-" + std::string(name) + "-" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
+using test::fresh_dir;
 
 std::string command_output(const std::string& command) {
   FILE* p = popen(command.c_str(), "r");
