@@ -3,7 +3,6 @@
 #include "io/video_recorder.hpp"
 
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
