@@ -43,7 +43,8 @@ nlohmann::json run_speed_sweep(const Scenario& base, const RunConfig& config, co
   double fastest = 0.0;
   const int count = static_cast<int>(std::floor((options.to - options.from) / options.step + 1e-9)) + 1;
   for (int i = 0; i < count; ++i) {
-    const double speed = options.from + i * options.step;
+    // Rounded to 1 µm/s: 0.1 + 6 × 0.1 is 0.70000000000000007, which a table row of 0.7 saturates.
+    const double speed = std::round((options.from + i * options.step) * 1e6) / 1e6;
     Scenario scenario = base;
     scenario.commands.clear();
     const double start = 1.0, ramp = speed / options.ramp_rate;
