@@ -47,6 +47,7 @@ void WalkingController::reset(const SensorData& first) {
   status_ = ControllerStatus{};
   fsm_ = WalkingStateMachine{};
   num_planned_ = 0;
+  planned_vx_ = 0.0;
   stabilizer_.reset();
   terrain_.reset();
   faulty_foot_sensor_ = -1;
@@ -103,7 +104,17 @@ void WalkingController::reset(const SensorData& first) {
   status_.state = name_of(fsm_.state());
 }
 
-void WalkingController::replan(double t, StepDecision decision, const VelocityCommand& v) {
+double WalkingController::max_speed_change() const {
+  return params_.limits.vx_rate * params_.table.lookup(planned_vx_, params_.step).step_time;
+}
+
+void WalkingController::replan(double t, StepDecision decision, const VelocityCommand& command) {
+  if (decision == StepDecision::None) return;
+  VelocityCommand v = command;
+  planned_vx_ = decision == StepDecision::StartWalk || decision == StepDecision::Continue
+                    ? ramp_towards(planned_vx_, command.vx, max_speed_change())
+                    : 0.0;
+  v.vx = planned_vx_;
   PatternSample now;
   pattern_.sample(t, now);
   const StepParameters step = params_.table.lookup(decision == StepDecision::StopStep ? 0.0 : v.vx, params_.step);
@@ -245,13 +256,15 @@ void WalkingController::step(const SensorData& raw_sensors, const WalkCommand& c
   bool saturated = false;
   const VelocityCommand v = saturate({command.vx, command.vy, command.omega}, params_.limits, saturated);
   status_.command_saturated = saturated;
-  const bool wants_to_walk = !command.stop && (std::abs(v.vx) + std::abs(v.vy) + std::abs(v.omega) > 1e-3);
+  const bool commanded = !command.stop && (std::abs(v.vx) + std::abs(v.vy) + std::abs(v.omega) > 1e-3);
+  // Too fast to stop in one step: keep walking and slow down first.
+  const bool wants_to_walk = commanded || std::abs(planned_vx_) > max_speed_change() + 1e-9;
   const bool at_touchdown = num_planned_ > 0 && t >= pattern_.next_touchdown() - 1e-9;
   if (at_touchdown) {
     feet_[index_of(planned_[0].side)] = planned_[0];
     ++status_.steps_completed;
   }
-  replan(t, fsm_.update(wants_to_walk, at_touchdown), v);
+  replan(t, fsm_.update(wants_to_walk, at_touchdown), commanded ? v : VelocityCommand{});
 
   pattern_.sample(t, sample_);
   // Finding the ground needs both F/T sensors; after a fault the footholds keep their heights.

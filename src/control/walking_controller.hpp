@@ -62,7 +62,10 @@ class WalkingController final : public Controller {
   Eigen::Matrix3d heading_frame() const;
 
  private:
-  void replan(double t, StepDecision decision, const VelocityCommand& v);
+  // Plans with the command's vx ramped from planned_vx_ (StartWalk, Continue).
+  void replan(double t, StepDecision decision, const VelocityCommand& command);
+  // The largest change of the gait's forward speed in one step (limits.vx_rate × step time).
+  double max_speed_change() const;
   void task_reference(const PatternSample& s);
   // Δx_λ, Δẋ_λ of both feet in the task rows (foot height, foot tilt against the upper body).
   void stabilizer_modification(const PatternSample& s);
@@ -90,6 +93,7 @@ class WalkingController final : public Controller {
   std::array<Footstep, 2> feet_;              // current footholds (planner frame)
   std::array<Footstep, 3> planned_;           // steps of the current plan
   int num_planned_ = 0;
+  double planned_vx_ = 0.0;                   // forward speed of the current plan (ramped, limits.vx_rate)
   PatternSample sample_;
   std::array<Eigen::Vector3d, 2> arm_offset_;  // arm CoM − upper body origin, heading frame
   std::array<Eigen::Vector3d, 2> arm_pivot_;   // shoulder pitch axis − upper body origin, heading frame

@@ -159,10 +159,11 @@ void read_controller(const YamlReader& r, const YAML::Node& c, ControllerConfig&
   w.rmrc.null_space_gain = r.non_negative_or(c, "controller", "null_space_gain", w.rmrc.null_space_gain);
   w.rmrc.joint_velocity_limit = r.positive_or(c, "controller", "joint_velocity_limit", w.rmrc.joint_velocity_limit);
   const YAML::Node limits = r.mapping(c, "controller", "limits");
-  r.expect_keys(limits, "controller.limits", {"vx_min", "vx_max", "vy_max", "omega_max"});
+  r.expect_keys(limits, "controller.limits", {"vx_min", "vx_max", "vx_rate", "vy_max", "omega_max"});
   if (limits) {
     w.limits.vx_min = r.number_or(limits, "controller.limits", "vx_min", w.limits.vx_min);
     w.limits.vx_max = r.non_negative_or(limits, "controller.limits", "vx_max", w.limits.vx_max);
+    w.limits.vx_rate = r.positive_or(limits, "controller.limits", "vx_rate", w.limits.vx_rate);
     w.limits.vy_max = r.non_negative_or(limits, "controller.limits", "vy_max", w.limits.vy_max);
     w.limits.omega_max = r.non_negative_or(limits, "controller.limits", "omega_max", w.limits.omega_max);
   }

@@ -45,7 +45,7 @@ double support_margin(const RobotModel& model, const PatternSample& s, const Eig
 }  // namespace
 
 CandidateResult evaluate_step_candidate(const RobotModel& model, const WalkingControllerParams& base, double speed,
-                                        double step_time, double double_support_ratio, int steps) {
+                                        double step_time, double double_support_ratio, int steps, int settle_steps) {
   WalkingControllerParams params = base;
   params.stabilizer = false;
   params.sensor_limits.frozen_cycles = 0;  // the kinematic replay below feeds constant F/T and IMU readings
@@ -64,6 +64,7 @@ CandidateResult evaluate_step_candidate(const RobotModel& model, const WalkingCo
   const double dt = params.rmrc.dt;
   const double start = 0.5;
   const double duration = start + params.start_shift + (steps + 1) * step_time;
+  const double gait_start = start + params.start_shift + settle_steps * step_time;
   const int com_row = TaskSpace(model).layout().com;
   std::deque<Eigen::VectorXd> history;
   CandidateResult result;
@@ -82,7 +83,7 @@ CandidateResult evaluate_step_candidate(const RobotModel& model, const WalkingCo
     }
     history.push_back(rmrc.qpos_d());
     if (history.size() > 3) history.pop_front();
-    if (history.size() == 3 && i % 10 == 0) {
+    if (history.size() == 3 && i % 10 == 0 && sensors.time >= gait_start) {
       const Eigen::Vector2d zmp = multibody_zmp(model, data, history[0], history[1], history[2], dt);
       result.zmp_margin = std::min(result.zmp_margin, support_margin(model, controller.pattern(), zmp));
     }
@@ -114,7 +115,11 @@ bool survives_in_simulation(const RobotModel& model, const WalkingControllerPara
 StepTable generate_step_table(const RobotModel& model, const WalkingControllerParams& base,
                               const StepTableSearch& search, const SimulationParams* sim, std::ostream* progress) {
   StepTable table;
-  for (double speed : search.speeds) {
+  // From the fastest speed down, so each row's step time stays near the faster row's choice.
+  std::vector<double> speeds = search.speeds;
+  std::sort(speeds.rbegin(), speeds.rend());
+  double faster_step_time = std::numeric_limits<double>::quiet_NaN();  // NaN: no feasible faster row
+  for (double speed : speeds) {
     StepTableRow best;
     best.speed = speed;
     best.clearance = base.step.clearance;
@@ -123,33 +128,79 @@ StepTable generate_step_table(const RobotModel& model, const WalkingControllerPa
       // parameters, which the stop step uses, and records the standing margin.
       best.step_time = base.step.step_time;
       best.double_support_ratio = base.step.double_support_ratio;
-      best.zmp_margin = evaluate_step_candidate(model, base, 0.0, best.step_time, best.double_support_ratio, 1).zmp_margin;
-      table.rows.push_back(best);
+      best.zmp_margin = evaluate_step_candidate(model, base, 0.0, best.step_time, best.double_support_ratio, 1, 0).zmp_margin;
+      table.rows.insert(table.rows.begin(), best);
       continue;
     }
-    bool best_feasible = false;
-    double best_margin = -std::numeric_limits<double>::infinity();
-    for (double step_time : search.step_times) {
-      for (double ds : search.double_support_ratios) {
-        CandidateResult r = evaluate_step_candidate(model, base, speed, step_time, ds, search.steps);
-        if (r.feasible && sim) {
-          r.feasible = survives_in_simulation(model, base, *sim, speed, search.turn_rate, step_time, ds, search.steps);
+    // Criteria 1 and 2 for every candidate in the window around the faster row's step time (all of
+    // them if none there is feasible); then criterion 3 by falling margin until one survives.
+    struct Candidate {
+      double step_time, ds;
+      CandidateResult result;
+    };
+    std::vector<Candidate> candidates;
+    for (const bool windowed : {true, false}) {
+      if (!windowed && !candidates.empty()) break;
+      for (double step_time : search.step_times) {
+        if (windowed && std::abs(step_time - faster_step_time) > search.max_step_time_change + 1e-9) continue;
+        for (double ds : search.double_support_ratios) {
+          candidates.push_back({step_time, ds, evaluate_step_candidate(model, base, speed, step_time, ds, search.steps,
+                                                                       search.settle_steps)});
         }
-        const bool better = (r.feasible && !best_feasible) || (r.feasible == best_feasible && r.zmp_margin > best_margin);
-        if (!better) continue;
-        best_feasible = r.feasible;
-        best_margin = r.zmp_margin;
-        best.step_time = step_time;
-        best.double_support_ratio = ds;
-        best.zmp_margin = r.feasible ? r.zmp_margin : std::min(0.0, r.zmp_margin);
       }
+      if (std::none_of(candidates.begin(), candidates.end(), [](const Candidate& c) { return c.result.feasible; })) {
+        if (windowed) candidates.clear();
+      }
+    }
+    std::stable_sort(candidates.begin(), candidates.end(), [](const Candidate& a, const Candidate& b) {
+      if (a.result.feasible != b.result.feasible) return a.result.feasible;
+      return a.result.zmp_margin > b.result.zmp_margin;
+    });
+    auto survives = [&](const Candidate& c) {
+      return !sim || survives_in_simulation(model, base, *sim, speed, search.turn_rate, c.step_time, c.ds, search.steps);
+    };
+    bool best_feasible = false;
+    for (const Candidate& c : candidates) {
+      if (!c.result.feasible || c.result.zmp_margin <= 0.0) break;
+      if (!survives(c)) continue;
+      best_feasible = true;
+      best.step_time = c.step_time;
+      best.double_support_ratio = c.ds;
+      best.zmp_margin = c.result.zmp_margin;
+      break;
+    }
+    // Longer steps where the margin is (nearly) as large: fewer touchdowns, lower joint rates.
+    if (best_feasible) {
+      std::vector<const Candidate*> longer;
+      for (const Candidate& c : candidates) {
+        if (c.result.feasible && c.step_time > best.step_time + 1e-9 &&
+            c.result.zmp_margin >= best.zmp_margin - search.margin_tolerance) {
+          longer.push_back(&c);
+        }
+      }
+      std::stable_sort(longer.begin(), longer.end(),
+                       [](const Candidate* a, const Candidate* b) { return a->step_time > b->step_time; });
+      for (const Candidate* c : longer) {
+        if (!survives(*c)) continue;
+        best.step_time = c->step_time;
+        best.double_support_ratio = c->ds;
+        best.zmp_margin = c->result.zmp_margin;
+        break;
+      }
+    }
+    if (!best_feasible) {  // the row records the best candidate and says so with a margin ≤ 0
+      const Candidate& c = candidates.front();
+      best.step_time = c.step_time;
+      best.double_support_ratio = c.ds;
+      best.zmp_margin = std::min(0.0, c.result.zmp_margin);
     }
     if (progress) {
       *progress << "speed " << speed << " m/s: step time " << best.step_time << " s, double support "
                 << best.double_support_ratio << ", ZMP margin " << 1000.0 * best.zmp_margin << " mm"
                 << (best_feasible ? "" : " (no feasible candidate)") << '\n';
     }
-    table.rows.push_back(best);
+    table.rows.insert(table.rows.begin(), best);
+    faster_step_time = best_feasible ? best.step_time : std::numeric_limits<double>::quiet_NaN();
   }
   return table;
 }

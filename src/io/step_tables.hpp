@@ -7,7 +7,9 @@
 //   1. kinematic feasibility through eq. (21): no joint held at a software limit, no joint-rate
 //      limiting, the CoM tracked within 1 cm;
 //   2. the ZMP margin of the full multibody model: the ZMP of the planned motion by inverse dynamics
-//      (mj_inverse), its smallest distance to the edge of the support polygon over the walk;
+//      (mj_inverse), its smallest distance to the edge of the support polygon over the gait at the
+//      speed, after `settle_steps` (the start from standing to full speed in one step is a different
+//      manoeuvre: criterion 3 walks it in closed loop);
 //   3. (when simulation parameters are given) the same gait walked in the full simulation with the
 //      stabilizer, turning at `turn_rate`, without a fall: the kinematic criteria alone admitted long
 //      steps with short double support that fell in closed loop while turning.
@@ -26,9 +28,16 @@ namespace biped {
 
 struct StepTableSearch {
   std::vector<double> speeds = {0.0, 0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9, 1.0};
-  std::vector<double> step_times = {0.5, 0.55, 0.6, 0.7, 0.8, 0.9, 1.0};
+  // Fast gaits need short steps: at 1.0 m/s steps of 0.5 s and more stretch LOLA's knee.
+  std::vector<double> step_times = {0.4, 0.45, 0.5, 0.55, 0.6, 0.7, 0.8, 0.9, 1.0};
   std::vector<double> double_support_ratios = {0.1, 0.15, 0.2, 0.3};
-  int steps = 6;           // steps walked per candidate
+  int steps = 8;           // steps walked per candidate
+  int settle_steps = 2;    // steps after the start that criterion 2 does not judge
+  // [s] between adjacent rows (the next faster row with a feasible choice): the gait changes its
+  // speed by a row per step or so, and LOLA fell going from 0.9 s steps at 0.4 m/s to 0.55 s at 0.6.
+  double max_step_time_change = 0.1;
+  // [m] a longer step time within this of the largest margin is preferred.
+  double margin_tolerance = 0.005;
   double turn_rate = 0.15;  // [rad/s] of the closed-loop check
 };
 
@@ -39,7 +48,7 @@ struct CandidateResult {
 
 // Judges one candidate at one speed (criteria above).
 CandidateResult evaluate_step_candidate(const RobotModel& model, const WalkingControllerParams& base, double speed,
-                                        double step_time, double double_support_ratio, int steps);
+                                        double step_time, double double_support_ratio, int steps, int settle_steps);
 // Criterion 3: true when the gait walks `steps` steps in the simulation without a fall.
 bool survives_in_simulation(const RobotModel& model, const WalkingControllerParams& base,
                             const SimulationParams& sim, double speed, double turn_rate, double step_time,

@@ -14,6 +14,10 @@ VelocityCommand saturate(const VelocityCommand& c, const CommandLimits& limits, 
   return out;
 }
 
+double ramp_towards(double current, double target, double max_change) {
+  return current + std::clamp(target - current, -max_change, max_change);
+}
+
 PlanarPose advance(const PlanarPose& pose, const VelocityCommand& v, double duration) {
   const double dyaw = v.omega * duration;
   // Displacement in the starting heading frame of a constant body velocity turning at ω.

@@ -11,6 +11,9 @@ namespace biped {
 
 struct CommandLimits {
   double vx_min = -0.3, vx_max = 1.0;  // [m/s]
+  // [m/s²] the gait's forward speed changes by at most this × step time per step, starts from
+  // standing and stops included: LOLA fell starting at 1.0 m/s in one step and stopping from it.
+  double vx_rate = 0.5;
   double vy_max = 0.15;                // [m/s] either side
   double omega_max = 0.5;              // [rad/s] either side
 };
@@ -22,6 +25,9 @@ struct VelocityCommand {
 
 // Returns the command clamped to the limits; `saturated` tells whether anything was clamped.
 VelocityCommand saturate(const VelocityCommand& command, const CommandLimits& limits, bool& saturated);
+
+// `current` moved towards `target` by at most `max_change`.
+double ramp_towards(double current, double target, double max_change);
 
 // The heading frame after moving for `duration` with a constant command (exact arc).
 PlanarPose advance(const PlanarPose& pose, const VelocityCommand& v, double duration);

@@ -332,25 +332,38 @@ PatternGeneratorParams simplified_model_of(const RobotModel& model) {
   mj_kinematics(m, d);
   mj_comPos(m, d);
   PatternGeneratorParams p;
-  double legs = 0.0, leg_com_height = 0.0, ankle_height = 0.0;
+  double swing = 0.0, swing_moment = 0.0, ankle_height = 0.0;  // both legs
   for (Side side : kSides) {
     const std::string hip = std::string(name_of(side)) + "_hip_yaw";
     const int joint = mj_name2id(m, mjOBJ_JOINT, hip.c_str());
     if (joint < 0) throw ModelError(model.path() + ": no joint '" + hip + "' (root of the leg)");
     const int leg = m->jnt_bodyid[joint];
     const FootInfo& foot = model.foot(side);
+    const double hip_z = d->xanchor[3 * joint + 2];
     const double ankle_z = d->xpos[3 * foot.body + 2];
     const double sole_z = d->site_xpos[3 * foot.sensor_site + 2] + foot.sole_z;
-    legs += m->body_subtreemass[leg];
-    leg_com_height += 0.5 * (d->subtree_com[3 * leg + 2] - ankle_z);
+    // A swinging leg pivots about the hip: a segment's CoM follows the ankle's horizontal motion by
+    // the share r of its depth below the hip, the rest moves with the pelvis. So the leg point
+    // carries Σ m r at the height of Σ m r z, and the rest joins the body. (The whole leg at the
+    // ankle overstated the swing leg's effect on the ZMP about twofold: the multibody ZMP missed
+    // the reference by 47 mm RMS at 0.6 m/s, 131 mm at 1.0 m/s.)
+    for (int b = leg; b < m->nbody; ++b) {
+      int parent = b;
+      while (parent != leg && parent != 0) parent = m->body_parentid[parent];
+      if (parent != leg) continue;
+      const double z = d->xipos[3 * b + 2];
+      const double r = std::clamp((hip_z - z) / (hip_z - ankle_z), 0.0, 1.0);
+      swing += m->body_mass[b] * r;
+      swing_moment += m->body_mass[b] * r * (z - ankle_z);
+    }
     ankle_height += 0.5 * (ankle_z - sole_z);
     p.mass_below_sensor = foot.mass_below_sensor;
     p.sensor_in_foot = Eigen::Vector3d(m->site_pos + 3 * foot.sensor_site);
     p.zmp_offset_x = p.sensor_in_foot.x() + 0.5 * (foot.sole_x_min + foot.sole_x_max);
   }
-  p.leg_mass = 0.5 * legs;
-  p.body_mass = model.total_mass() - legs;
-  p.leg_com_height = leg_com_height;
+  p.leg_mass = 0.5 * swing;
+  p.body_mass = model.total_mass() - swing;
+  p.leg_com_height = swing_moment / swing;
   p.ankle_height = ankle_height;
   p.gravity = std::abs(m->opt.gravity[2]);
   return p;

@@ -16,8 +16,8 @@
 namespace biped {
 
 struct PatternGeneratorParams {
-  double body_mass = 35.0;       // [kg] everything but the legs
-  double leg_mass = 10.0;        // [kg] each leg (thigh, shank, foot)
+  double body_mass = 35.0;       // [kg] everything but the legs' swinging shares
+  double leg_mass = 10.0;        // [kg] each leg's share that follows the ankle (simplified_model_of)
   double leg_com_height = 0.35;  // [m] leg mass point above the ankle
   double ankle_height = 0.09;    // [m] ankle above the sole
   double gravity = 9.81;
@@ -117,7 +117,9 @@ class WalkingPatternGenerator {
 namespace biped {
 
 // The simplified model's masses and the foot geometry, measured on the robot model in its
-// "stand" keyframe: leg = subtree of the hip yaw joint's body, body = everything else.
+// "stand" keyframe. Each leg (subtree of the hip yaw joint's body) is split: the share of every
+// segment's mass that follows the ankle when the leg swings about the hip (its depth below the hip
+// over the ankle's) makes the leg mass point; the rest moves with the pelvis and joins the body.
 PatternGeneratorParams simplified_model_of(const RobotModel& model);
 
 }  // namespace biped

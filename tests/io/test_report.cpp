@@ -125,7 +125,7 @@ TEST_F(StandingRun, StringsCannotEndTheDataElement) {
 }
 
 TEST(ReportOfAWalk, FootprintsOfThePlanAndCopInsideTheSupportPolygon) {
-  const Scenario scenario = load_scenario(test::source_path("config/scenarios/lola-walk.yaml"), {"duration=5"});
+  const Scenario scenario = load_scenario(test::source_path("config/scenarios/lola-walk.yaml"), {"duration=6"});
   const fs::path out = fs::temp_directory_path() / ("biped-report-" + std::to_string(::getpid()));
   fs::remove_all(out);
   const ScenarioResult r = run_scenario(scenario, make_run_config(scenario), out.string());

@@ -52,10 +52,10 @@ TEST(StepTables, MalformedFilesNameTheLine) {
 TEST(StepTables, CriterionPrefersFeasibleGaitsWithZmpMargin) {
   const RobotModel model = test::load_model("johnnie");
   WalkingControllerParams base;
-  const CandidateResult easy = evaluate_step_candidate(model, base, 0.3, 0.9, 0.2, 4);
+  const CandidateResult easy = evaluate_step_candidate(model, base, 0.3, 0.9, 0.2, 4, 2);
   EXPECT_TRUE(easy.feasible);
   EXPECT_GT(easy.zmp_margin, 0.02);
-  const CandidateResult hard = evaluate_step_candidate(model, base, 1.0, 1.0, 0.1, 4);  // 1 m steps
+  const CandidateResult hard = evaluate_step_candidate(model, base, 1.0, 1.0, 0.1, 4, 2);  // 1 m steps
   EXPECT_FALSE(hard.feasible && hard.zmp_margin > 0.0);
 }
 

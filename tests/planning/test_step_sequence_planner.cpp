@@ -64,5 +64,16 @@ TEST(StepSequencePlanner, ZeroCommandPlacesTheFeetSideBySide) {
   EXPECT_NEAR(steps[0].yaw, left.yaw, 1e-12);
 }
 
+// The gait's speed moves towards the command by at most the allowed change per step, both ways.
+TEST(StepSequencePlanner, SpeedRampsTowardsTheCommand) {
+  double v = 0.0;
+  int steps = 0;
+  while (v < 1.0 && steps < 100) v = ramp_towards(v, 1.0, 0.25), ++steps;
+  EXPECT_EQ(steps, 4);
+  EXPECT_DOUBLE_EQ(v, 1.0);
+  EXPECT_DOUBLE_EQ(ramp_towards(1.0, 0.0, 0.25), 0.75);
+  EXPECT_DOUBLE_EQ(ramp_towards(0.3, 0.35, 0.25), 0.35);
+}
+
 }  // namespace
 }  // namespace biped
