@@ -41,7 +41,10 @@ void TerrainAdaptation::settle(Foot& foot, int k, double dt, const Wrench& desir
   const double cop = -foot.filtered_torque / foot.filtered_force;
   const double error = -desired.torque.y() / desired.force.z() - cop;
   foot.cop_error += dt / (params_.cop_filter_time + dt) * (error - foot.cop_error);
-  const double direction = foot.cop_error > params_.cop_band ? 1.0 : foot.cop_error < -params_.cop_band ? -1.0 : 0.0;
+  // A turn once started goes on until the error is well inside the band: stopping at its edge
+  // leaves the sole as unsupported as it was when the turn began.
+  const double band = foot.tilt_rate_sign == 0.0 ? params_.cop_band : kBandToStop * params_.cop_band;
+  const double direction = foot.cop_error > band ? 1.0 : foot.cop_error < -band ? -1.0 : 0.0;
   if (direction == 0.0) {
     // Found, once the load has come over to this foot (the other one has left the ground, or the
     // plan no longer shifts load to it, as when standing after the last step): the tilt holds for
@@ -118,13 +121,20 @@ void TerrainAdaptation::step(double dt, const PatternSample& s, const std::array
       }
     } else {
       foot.planned_ground = plan.position.z();
-      if (foot.phase == Phase::Swing) foot.phase = contact ? Phase::Stance : Phase::Searching;
-      if (foot.phase == Phase::Latched) foot.phase = Phase::Stance;
+      // A foot that met the ground early but lost it again by the planned touchdown (it brushed
+      // the ground) searches like one that met none.
+      if (foot.phase == Phase::Swing || foot.phase == Phase::Latched) {
+        foot.phase = contact ? Phase::Stance : Phase::Searching;
+        foot.search_time = 0.0;
+      }
       if (foot.phase == Phase::Searching) {
+        foot.search_time += dt;
         if (contact || foot.offset <= lowest) {
           foot.phase = Phase::Stance;
-        } else {
+        } else if (foot.search_time > params_.search_delay) {
           set_offset(foot, std::max(foot.offset - params_.search_speed * dt, lowest), dt);
+        } else {
+          foot.rate = 0.0;
         }
       }
       if (foot.phase == Phase::Stance) {

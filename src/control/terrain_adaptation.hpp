@@ -28,7 +28,11 @@ struct TerrainAdaptationParams {
   bool enabled = true;
   double contact_force = 60.0;    // [N] filtered normal force that means ground contact
   double filter_time = 0.005;     // [s] first-order filter of the normal force
-  double search_speed = 0.25;     // [m/s] descent of a foot that found no ground at touchdown
+  double search_speed = 0.25;     // [m/s] descent of a foot that found no ground at touchdown ...
+  // ... this long after it [s]. A foot landing on time on the expected ground meets it with almost
+  // no force and reaches contact_force only as the plan shifts load onto it (about 25 ms for LOLA);
+  // searching at once would lower every foothold by a few millimetres and walk the estimate down.
+  double search_delay = 0.04;
   double max_step = 0.05;         // [m] bound of a foothold's height against the other foot's
   double com_follow_time = 0.3;   // [s] time constant of the CoM height following the footholds
   double cop_band = 0.04;         // [m] desired centre of pressure this far from the measured one at touchdown: the sole lacks support there
@@ -70,6 +74,7 @@ class TerrainAdaptation {
     double ground = 0.0;        // ground height of the current or last foothold
     double offset = 0.0, rate = 0.0;
     double latched_height = 0.0;  // planned height + offset when the ground was met
+    double search_time = 0.0;     // time since the planned touchdown without contact
     double filtered_force = 0.0;
     double planned_ground = 0.0;  // the plan's height of this foot standing (its swing clearance is above it)
     double filtered_torque = 0.0;  // T_y, filtered like the force
@@ -86,6 +91,7 @@ class TerrainAdaptation {
   void return_tilt(Foot& foot, double dt);
   static constexpr double kSwingSpeed = 0.5;  // [m/s] a swinging foot's offset moves to its target at most this fast
 
+  static constexpr double kBandToStop = 0.5;  // share of cop_band inside which a started turn stops
   static constexpr double kTiltReturnTime = 0.05;  // [s] time constant of the tilt's return in the swing
 
   TerrainAdaptationParams params_;

@@ -269,8 +269,13 @@ void WalkingController::step(const SensorData& raw_sensors, const WalkCommand& c
   pattern_.sample(t, sample_);
   // Finding the ground needs both F/T sensors; after a fault the footholds keep their heights.
   if (params_.stabilizer && !status_.fault) {
+    // Where each standing foot's ground is, in the frame of the commanded heights: its height
+    // modification (eq. 20) and its sole's deflection under the measured load (eq. 11).
     const auto& m = stabilizer_.modification();
-    terrain_.step(params_.rmrc.dt, sample_, sensors.foot_wrench, stabilizer_.desired(), {m[0].offset[0], m[1].offset[0]});
+    const double compliance = 1.0 / stabilizer_.contact_stiffness();
+    terrain_.step(params_.rmrc.dt, sample_, sensors.foot_wrench, stabilizer_.desired(),
+                  {m[0].offset[0] + compliance * std::max(0.0, sensors.foot_wrench[0].force.z()),
+                   m[1].offset[0] + compliance * std::max(0.0, sensors.foot_wrench[1].force.z())});
   }
   if (status_.fault) terrain_.hold(params_.rmrc.dt);
   task_reference(sample_);

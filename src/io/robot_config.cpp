@@ -108,13 +108,14 @@ void read_sensor_limits(const YamlReader& r, const YAML::Node& n, SensorLimits& 
 
 void read_terrain_adaptation(const YamlReader& r, const YAML::Node& n, TerrainAdaptationParams& p) {
   const std::string where = "controller.terrain_adaptation";
-  r.expect_keys(n, where, {"enabled", "contact_force", "filter_time", "search_speed", "max_step", "com_follow_time",
+  r.expect_keys(n, where, {"enabled", "contact_force", "filter_time", "search_speed", "search_delay", "max_step", "com_follow_time",
                            "cop_band", "cop_filter_time", "tilt_search_speed", "max_tilt"});
   if (!n) return;
   p.enabled = r.boolean_or(n, where, "enabled", p.enabled);
   p.contact_force = r.positive_or(n, where, "contact_force", p.contact_force);
   p.filter_time = r.positive_or(n, where, "filter_time", p.filter_time);
   p.search_speed = r.positive_or(n, where, "search_speed", p.search_speed);
+  p.search_delay = r.non_negative_or(n, where, "search_delay", p.search_delay);
   p.max_step = r.positive_or(n, where, "max_step", p.max_step);
   p.com_follow_time = r.positive_or(n, where, "com_follow_time", p.com_follow_time);
   p.cop_band = r.positive_or(n, where, "cop_band", p.cop_band);
