@@ -25,28 +25,36 @@ std::array<Wrench, 2> loads(double left, double right) {
   return w;
 }
 
+// The left foot's plan descending at 0.2 m/s from 5 cm above its ground, the right foot standing.
+struct LeftFootDescending {
+  PatternSample sample;
+  double planned = 0.05;
+  LeftFootDescending() {
+    sample.feet[0].in_contact = false;
+    sample.feet[0].velocity.z() = -0.2;
+  }
+  // `cycles` control cycles of the descent with these normal forces measured.
+  void descend(TerrainAdaptation& terrain, int cycles, double left_force, double right_force) {
+    for (int i = 0; i < cycles; ++i) {
+      sample.feet[0].position.z() = planned -= 0.2 * kDt;
+      terrain.step(kDt, sample, loads(left_force, right_force));
+    }
+  }
+};
+
 // The left foot swings down onto ground that is higher than planned: from the moment its sensor
 // feels the ground, its commanded height (plan + offset) stays where it met the ground.
 TEST(TerrainAdaptation, EarlyContactHoldsTheFootWhereItMetTheGround) {
   TerrainAdaptationParams params;
   TerrainAdaptation terrain(test::load_model("lola"), params);
-  PatternSample s;
-  s.feet[0].in_contact = false;
-  s.feet[0].velocity.z() = -0.2;
-  double planned = 0.05;
-  for (int i = 0; i < 100; ++i) {  // in the air
-    s.feet[0].position.z() = planned -= 0.2 * kDt;
-    terrain.step(kDt, s, loads(-10.0, 500.0));
-  }
+  LeftFootDescending left;
+  left.descend(terrain, 100, -10.0, 500.0);  // in the air
   EXPECT_DOUBLE_EQ(terrain.foot_offset(0), 0.0);
-  const double met_at = planned;
-  for (int i = 0; i < 100; ++i) {  // on the ground, 2 cm above the plan's
-    s.feet[0].position.z() = planned -= 0.2 * kDt;
-    terrain.step(kDt, s, loads(200.0, 300.0));
-  }
-  EXPECT_NEAR(planned + terrain.foot_offset(0), met_at, 0.2 * kDt * 5) << "holds within the filter's few cycles";
-  s.feet[0].in_contact = true;
-  terrain.step(kDt, s, loads(250.0, 250.0));
+  const double met_at = left.planned;
+  left.descend(terrain, 100, 200.0, 300.0);  // on the ground, 2 cm above the plan's
+  EXPECT_NEAR(left.planned + terrain.foot_offset(0), met_at, 0.2 * kDt * 5) << "holds within the filter's few cycles";
+  left.sample.feet[0].in_contact = true;
+  terrain.step(kDt, left.sample, loads(250.0, 250.0));
   EXPECT_NEAR(terrain.ground_height(0), terrain.foot_offset(0), 1e-12) << "touchdown records the foothold's height";
   EXPECT_GT(terrain.ground_height(0), 0.0);
 }
@@ -88,20 +96,15 @@ TEST(TerrainAdaptation, LateContactSearchesDownForTheGround) {
 TEST(TerrainAdaptation, ABrushOfTheGroundIsNotAFoothold) {
   TerrainAdaptationParams params;
   TerrainAdaptation terrain(test::load_model("lola"), params);
-  PatternSample s;
-  s.feet[0].in_contact = false;
-  s.feet[0].velocity.z() = -0.2;
-  double planned = 0.05;
-  for (int i = 0; i < 100; ++i) {
-    s.feet[0].position.z() = planned -= 0.2 * kDt;
-    terrain.step(kDt, s, loads(i < 50 ? -10.0 : 200.0, 500.0));  // the touch, 2.5 cm above the plan's ground
-  }
-  for (int i = 0; i < 30; ++i) terrain.step(kDt, s, loads(-10.0, 500.0));  // gone again
+  LeftFootDescending left;
+  left.descend(terrain, 50, -10.0, 500.0);
+  left.descend(terrain, 50, 200.0, 500.0);  // the touch, 2.5 cm above the plan's ground
+  for (int i = 0; i < 30; ++i) terrain.step(kDt, left.sample, loads(-10.0, 500.0));  // gone again
   const double held = terrain.foot_offset(0);
   EXPECT_GT(held, 0.005) << "held where it touched while it touched";
-  s.feet[0].in_contact = true;
+  left.sample.feet[0].in_contact = true;
   const int delay = static_cast<int>(std::lround(params.search_delay / kDt));
-  for (int i = 0; i < delay + 20; ++i) terrain.step(kDt, s, loads(-10.0, 500.0));
+  for (int i = 0; i < delay + 20; ++i) terrain.step(kDt, left.sample, loads(-10.0, 500.0));
   EXPECT_LT(terrain.foot_offset(0), held - 0.004) << "searching down from there";
   EXPECT_NEAR(terrain.foot_offset_rate(0), -params.search_speed, 1e-9);
 }
