@@ -7,6 +7,8 @@
 
 #include <gtest/gtest.h>
 
+#include <ostream>
+
 #include "io/robot_config.hpp"
 #include "io/scenario.hpp"
 #include "io/scenario_runner.hpp"
@@ -219,9 +221,15 @@ TEST(Stabilizer, ClosedLoopWalkKeepsTheUpperBodySteadyWhereOpenLoopRocks) {
 }
 
 struct Robustness {
+  const char* name;  // of the test instance
   const char* scenario;
   std::vector<std::string> overrides;
 };
+
+void PrintTo(const Robustness& r, std::ostream* os) {
+  *os << r.scenario;
+  for (const std::string& o : r.overrides) *os << " --set " << o;
+}
 
 class StabilizerRobustness : public ::testing::TestWithParam<Robustness> {};
 
@@ -239,12 +247,14 @@ TEST_P(StabilizerRobustness, WalksWithoutFalling) {
 
 INSTANTIATE_TEST_SUITE_P(
     Scenarios, StabilizerRobustness,
-    ::testing::Values(Robustness{"lola-sensor-noise", {}}, Robustness{"lola-model-error-mass", {}},
-                      Robustness{"lola-model-error-mass", {"model_error.upper_body_mass_scale=0.9"}},
-                      Robustness{"lola-model-error-com", {}},
-                      Robustness{"lola-model-error-com", {"model_error.upper_body_com_offset=[0,0.02,0]"}},
-                      Robustness{"lola-model-error", {}},
-                      Robustness{"lola-model-error", {"model_error.upper_body_mass_scale=0.9"}}));
+    ::testing::Values(Robustness{"SensorNoiseAndDelay", "lola-sensor-noise", {}},
+                      Robustness{"UpperBodyMassPlus10Percent", "lola-model-error-mass", {}},
+                      Robustness{"UpperBodyMassMinus10Percent", "lola-model-error-mass", {"model_error.upper_body_mass_scale=0.9"}},
+                      Robustness{"UpperBodyComForward", "lola-model-error-com", {}},
+                      Robustness{"UpperBodyComSideways", "lola-model-error-com", {"model_error.upper_body_com_offset=[0,0.02,0]"}},
+                      Robustness{"HeavierWithComForward", "lola-model-error", {}},
+                      Robustness{"LighterWithComForward", "lola-model-error", {"model_error.upper_body_mass_scale=0.9"}}),
+    [](const ::testing::TestParamInfo<Robustness>& info) { return std::string(info.param.name); });
 
 // The JOHNNIE scenario: a circle of radius 1.5 m, 60 s, the joystick changing speed
 // (0.2–0.5 m/s) and direction. (It fell at 43.6 s before the CoM height followed the footholds.)
