@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # The closed-loop regression battery: every shipped scenario in full, the unexpected terrain at many
-# edge positions, the sensor faults at several times, the model errors in every variant, and the
-# speed sweeps of both robots. One line per run; the exit status is 1 if any run ends otherwise than
-# expected (a fall where none is expected, or no fall where the adaptation is switched off).
+# edge positions (also with sensor noise, with model errors, and for JOHNNIE), the sensor faults at
+# several times, the model errors in every variant, and the speed sweeps of both robots. One line
+# per run; the exit status is 1 if any run ends otherwise than expected (a fall where none is
+# expected, or no fall where the adaptation is switched off).
 #   experiments/regression.sh [--set KEY=VALUE ...]   (after make build; about 1 minute on 2 cores)
 # Overrides given apply to every run (an A/B comparison of a parameter change, e.g.
 # `--set controller.stabilization.tilt_gain=900`). Outputs: out/regression/<name>/{summary.json,
@@ -39,6 +40,9 @@ runs() {
   for x in 1.0 2.0; do echo "slope-at-$x|walks|$S/lola-terrain-slope.yaml --set terrain.0.x=$x"; done
   for f in step-up step-down slope; do
     echo "$f-adaptation-off|falls|$S/lola-terrain-$f.yaml --set controller.terrain_adaptation.enabled=false"
+    echo "$f-with-sensor-noise|walks|$S/lola-terrain-$f.yaml --set sensors.noise=true --set sensors.delay_cycles=1"
+    echo "$f-with-model-error|walks|$S/lola-terrain-$f.yaml --set model_error.upper_body_mass_scale=1.1 --set model_error.upper_body_com_offset=[0.02,0,0]"
+    echo "johnnie-$f|walks|$S/lola-terrain-$f.yaml --set robot=johnnie"
   done
 }
 
