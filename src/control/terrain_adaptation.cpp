@@ -77,7 +77,7 @@ void TerrainAdaptation::set_offset(Foot& foot, double offset, double dt) {
 }
 
 void TerrainAdaptation::step(double dt, const PatternSample& s, const std::array<Wrench, 2>& measured,
-                             const std::array<Wrench, 2>& desired, const std::array<double, 2>& height_modification) {
+                             const std::array<Wrench, 2>& desired, const std::array<double, 2>& ground_above_command) {
   if (!params_.enabled) return;
   const double filter = dt / (params_.filter_time + dt);
   for (int k = 0; k < 2; ++k) {
@@ -139,7 +139,7 @@ void TerrainAdaptation::step(double dt, const PatternSample& s, const std::array
       }
       if (foot.phase == Phase::Stance) {
         // Force control lowers or raises the foot onto the ground on top of the offset.
-        foot.ground = foot.offset + height_modification[k];
+        foot.ground = foot.offset + ground_above_command[k];
         foot.rate = 0.0;
         settle(foot, k, dt, desired[k], loading);
       }

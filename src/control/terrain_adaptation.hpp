@@ -47,10 +47,11 @@ class TerrainAdaptation {
   TerrainAdaptation(const RobotModel& model, const TerrainAdaptationParams& params);
   void reset();
   // One cycle with the pattern's sample, the measured and the desired contact wrenches (λ_d of
-  // eq. 10, last cycle), and force control's present height modification of each foot (Δz of
-  // eq. 20), part of where a standing foot's ground is.
+  // eq. 10, last cycle), and where each standing foot's ground lies above its planned height plus
+  // offset: force control's height modification (Δz of eq. 20) and the sole's deflection under
+  // its load.
   void step(double dt, const PatternSample& s, const std::array<Wrench, 2>& measured,
-            const std::array<Wrench, 2>& desired = {}, const std::array<double, 2>& height_modification = {0.0, 0.0});
+            const std::array<Wrench, 2>& desired = {}, const std::array<double, 2>& ground_above_command = {0.0, 0.0});
   // Without trusted force readings: standing feet keep their offsets, a foot in the air goes to the
   // other foot's ground height.
   void hold(double dt);
