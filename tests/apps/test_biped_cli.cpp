@@ -174,7 +174,8 @@ TEST(BipedRun, ShippedScenariosRun) {
   for (const char* name : {"lola-stand", "johnnie-stand", "lola-walk", "johnnie-walk", "lola-weight-shift",
                            "johnnie-weight-shift", "lola-walk-open-loop", "johnnie-walk-open-loop", "lola-sensor-noise",
                            "lola-model-error-mass", "lola-model-error-com", "lola-model-error", "lola-ft-nan",
-                           "lola-ft-frozen"}) {
+                           "lola-ft-frozen", "lola-straight", "johnnie-circle", "lola-push", "lola-terrain-step-up",
+                           "lola-terrain-step-down", "lola-terrain-slope"}) {
     const fs::path out = work_dir() / name;
     const Outcome o = biped("run " + biped::test::source_path(std::string("config/scenarios/") + name + ".yaml") +
                             " --set duration=0.5 --out " + out.string());

@@ -256,6 +256,19 @@ INSTANTIATE_TEST_SUITE_P(
                       Robustness{"LighterWithComForward", "lola-model-error", {"model_error.upper_body_mass_scale=0.9"}}),
     [](const ::testing::TestParamInfo<Robustness>& info) { return std::string(info.param.name); });
 
+// The first scenario in full: LOLA straight at 0.6 m/s for 30 s, no fall, the upper body's
+// tilt RMS below 1° about each axis, and the distance of the commanded speed (within 10 %).
+TEST(StabilizerRobustness, LolaWalksStraightThirtySecondsWithTheTiltBelowOneDegree) {
+  const Scenario scenario = load_scenario(test::source_path("config/scenarios/lola-straight.yaml"));
+  const ScenarioResult r = run_scenario(scenario, make_run_config(scenario), "");
+  ASSERT_FALSE(r.run.fell) << r.run.fall_reason << " at " << r.run.fall_time;
+  const auto& tilt = r.summary["upper_body_tilt_deg"];
+  EXPECT_LT(tilt["rms_x"].get<double>(), 1.0);
+  EXPECT_LT(tilt["rms_y"].get<double>(), 1.0);
+  const double walking_time = scenario.commands[2].t - scenario.commands[1].t;
+  EXPECT_GT(r.summary["distance_m"].get<double>(), 0.9 * scenario.commands[1].command.vx * walking_time);
+}
+
 // The JOHNNIE scenario: a circle of radius 1.5 m, 60 s, the joystick changing speed
 // (0.2–0.5 m/s) and direction. (It fell at 43.6 s before the CoM height followed the footholds.)
 TEST(StabilizerRobustness, JohnnieWalksTheSixtySecondCircle) {
