@@ -138,19 +138,21 @@ StepTable generate_step_table(const RobotModel& model, const WalkingControllerPa
       double step_time, ds;
       CandidateResult result;
     };
-    std::vector<Candidate> candidates;
-    for (const bool windowed : {true, false}) {
-      if (!windowed && !candidates.empty()) break;
+    const bool windowed = !std::isnan(faster_step_time);
+    auto evaluate = [&](bool in_window) {
+      std::vector<Candidate> list;
       for (double step_time : search.step_times) {
-        if (windowed && std::abs(step_time - faster_step_time) > search.max_step_time_change + 1e-9) continue;
+        if (in_window && std::abs(step_time - faster_step_time) > search.max_step_time_change + 1e-9) continue;
         for (double ds : search.double_support_ratios) {
-          candidates.push_back({step_time, ds, evaluate_step_candidate(model, base, speed, step_time, ds, search.steps,
-                                                                       search.settle_steps)});
+          list.push_back({step_time, ds, evaluate_step_candidate(model, base, speed, step_time, ds, search.steps,
+                                                                 search.settle_steps)});
         }
       }
-      if (std::none_of(candidates.begin(), candidates.end(), [](const Candidate& c) { return c.result.feasible; })) {
-        if (windowed) candidates.clear();
-      }
+      return list;
+    };
+    std::vector<Candidate> candidates = evaluate(windowed);
+    if (windowed && std::none_of(candidates.begin(), candidates.end(), [](const Candidate& c) { return c.result.feasible; })) {
+      candidates = evaluate(false);
     }
     std::stable_sort(candidates.begin(), candidates.end(), [](const Candidate& a, const Candidate& b) {
       if (a.result.feasible != b.result.feasible) return a.result.feasible;
