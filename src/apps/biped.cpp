@@ -8,16 +8,17 @@
 #include <memory>
 
 #include "apps/allocation_counter.hpp"
-#include "io/controller_bench.hpp"
 #include "io/output_files.hpp"
-#include "io/push_test.hpp"
 #include "io/robot_config.hpp"
-#include "io/step_tables.hpp"
-#include "io/video_recorder.hpp"
 #include "io/scenario.hpp"
-#include "io/scenario_runner.hpp"
-#include "io/speed_sweep.hpp"
+#include "io/step_table_file.hpp"
+#include "io/video_recorder.hpp"
 #include "io/yaml_reader.hpp"
+#include "studies/controller_bench.hpp"
+#include "studies/push_test.hpp"
+#include "studies/scenario_runner.hpp"
+#include "studies/speed_sweep.hpp"
+#include "studies/step_table_search.hpp"
 
 namespace {
 

@@ -1,11 +1,12 @@
 #include "control/contact_model.hpp"
 
-#include <mujoco/mujoco.h>
-
 #include <Eigen/Geometry>
 #include <Eigen/QR>
 #include <algorithm>
 #include <cmath>
+
+#include "math/rotations.hpp"
+#include "model/kinematics.hpp"
 
 namespace biped {
 namespace {
@@ -140,33 +141,27 @@ double toe_angle(const RobotModel& model, const FootInfo& foot, const Eigen::Vec
 std::array<Eigen::Vector3d, 2> point_contact_wrenches(const RobotModel& model, RobotData& data,
                                                       const Eigen::VectorXd& qpos, const ContactModelParams& params,
                                                       double ground_height) {
-  const mjModel* m = model.mj();
-  mjData* d = data.mj();
-  Eigen::Map<Eigen::VectorXd>(d->qpos, m->nq) = qpos;
-  mj_kinematics(m, d);
+  data.qpos() = qpos;
+  forward_kinematics(model, data);
   std::array<Eigen::Vector3d, 2> lambda;
   for (Side side : kSides) {
     const FootInfo& foot = model.foot(side);
-    const Eigen::Vector3d position(d->site_xpos + 3 * foot.sensor_site);
-    const Eigen::Matrix3d rotation =
-        Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(d->site_xmat + 9 * foot.sensor_site);
-    lambda[index_of(side)] =
-        point_contact_wrench(foot, params, toe_angle(model, foot, qpos), position, rotation, ground_height);
+    lambda[index_of(side)] = point_contact_wrench(foot, params, toe_angle(model, foot, qpos), data.site_position(foot.sensor_site),
+                                                  data.site_rotation(foot.sensor_site), ground_height);
   }
   return lambda;
 }
 
 FootRows contact_jacobian(const RobotModel& model, const Eigen::VectorXd& qpos, const ContactModelParams& params,
                           double ground_height, double h) {
-  const mjModel* m = model.mj();
   RobotData data(model);
-  FootRows G(6, m->nv);
-  for (int i = 0; i < m->nv; ++i) {
-    Eigen::VectorXd direction = Eigen::VectorXd::Zero(m->nv);
+  FootRows G(6, model.nv());
+  for (int i = 0; i < model.nv(); ++i) {
+    Eigen::VectorXd direction = Eigen::VectorXd::Zero(model.nv());
     direction[i] = 1.0;
     Eigen::VectorXd q_plus = qpos, q_minus = qpos;
-    mj_integratePos(m, q_plus.data(), direction.data(), h);
-    mj_integratePos(m, q_minus.data(), direction.data(), -h);
+    integrate_configuration(model, direction, h, q_plus);
+    integrate_configuration(model, direction, -h, q_minus);
     const auto plus = point_contact_wrenches(model, data, q_plus, params, ground_height);
     const auto minus = point_contact_wrenches(model, data, q_minus, params, ground_height);
     for (int k = 0; k < 2; ++k) G.col(i).segment<3>(3 * k) = (plus[k] - minus[k]) / (2.0 * h);
@@ -183,7 +178,7 @@ FootRows selected_task_rows(const TaskSpace& space, const TaskSpaceData& data) {
     // The x/y rows of the task's rotation vector rates (upper-body frame) are not foot-frame tilts
     // once the foot is yawed against the upper body; this rotates them there (the controller's
     // stabilizer_modification uses yaw(ψ_foot − ψ_heading) for it).
-    const Eigen::Matrix3d to_foot = so3::exp(phi).transpose() * so3::inverse_left_jacobian(phi).inverse();
+    const Eigen::Matrix3d to_foot = math::so3::exp(phi).transpose() * math::so3::inverse_left_jacobian(phi).inverse();
     rows.row(3 * k) = data.J.row(L.foot_position[k] + 2);
     rows.middleRows<2>(3 * k + 1) = (to_foot * data.J.middleRows<3>(L.foot_orientation[k])).topRows<2>();
   }

@@ -84,7 +84,7 @@ std::array<Eigen::Vector3d, 2> point_contact_wrenches(const RobotModel& model, R
 using FootRows = Eigen::Matrix<double, 6, Eigen::Dynamic>;
 
 // S_λ∇_qλ by central differences of point_contact_wrenches along each generalized velocity
-// (mj_integratePos, step h).
+// (integrate_configuration, step h).
 FootRows contact_jacobian(const RobotModel& model, const Eigen::VectorXd& qpos, const ContactModelParams& params,
                           double ground_height, double h = 1e-6);
 

@@ -2,7 +2,7 @@
 // Quantities derived from a measured foot wrench.
 #include <Eigen/Core>
 
-#include "control/interface.hpp"
+#include "math/wrench.hpp"
 
 namespace biped {
 

@@ -6,7 +6,7 @@
 namespace biped {
 
 NullSpaceObjective::NullSpaceObjective(const RobotModel& model, const NullSpaceObjectiveParams& params)
-    : nv_(model.mj()->nv), comfort_weight_(params.comfort_weight), limit_weight_(params.limit_weight) {
+    : nv_(model.nv()), comfort_weight_(params.comfort_weight), limit_weight_(params.limit_weight) {
   const Eigen::VectorXd& comfort = params.comfort_pose.size() == 0 ? model.stand_pose() : params.comfort_pose;
   if (comfort.size() != model.num_joints()) {
     throw std::invalid_argument("null-space objective: comfort pose has " + std::to_string(comfort.size()) +

@@ -6,6 +6,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "model/kinematics.hpp"
+
 namespace biped {
 
 Eigen::VectorXd task_gains_over_dt(const ResolvedMotionRateControlParams& params, int dim) {
@@ -91,7 +93,7 @@ double limit_joint_rates(const RobotModel& model, const Eigen::VectorXd& velocit
 
 // eq. (21), last line.
 void integrate_joint_rates(const RobotModel& model, const Eigen::VectorXd& qdot, double dt, Eigen::VectorXd& qpos) {
-  mj_integratePos(model.mj(), qpos.data(), qdot.data(), dt);
+  integrate_configuration(model, qdot, dt, qpos);
   for (const JointInfo& joint : model.joints()) {
     qpos[joint.qpos_adr] = std::clamp(qpos[joint.qpos_adr], joint.soft_lower, joint.soft_upper);
   }

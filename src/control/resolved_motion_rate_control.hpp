@@ -64,7 +64,7 @@ void remove_locked_joints(const RobotModel& model, const Eigen::ArrayXi& locked,
 // the task-space direction is kept) until no joint exceeds its limit; returns the factor (≤ 1).
 double limit_joint_rates(const RobotModel& model, const Eigen::VectorXd& velocity_limits,
                          Eigen::VectorXd& qdot);
-// eq. (21), last line: q_d ← q_d ⊕ q̇_d Δt (mj_integratePos), then joint angles clamped to the
+// eq. (21), last line: q_d ← q_d ⊕ q̇_d Δt (integrate_configuration), then joint angles clamped to the
 // software limits.
 void integrate_joint_rates(const RobotModel& model, const Eigen::VectorXd& qdot, double dt,
                            Eigen::VectorXd& qpos);

@@ -1,6 +1,8 @@
 #pragma once
 // Plausibility check of one sensor reading: every value finite and inside its physical range.
-#include "control/interface.hpp"
+#include "interface/fault.hpp"
+#include "interface/sensor_data.hpp"
+#include "model/robot_model.hpp"
 
 namespace biped {
 
@@ -13,29 +15,8 @@ struct SensorLimits {
   int frozen_cycles = 50;             // identical F/T or IMU readings in a row that mean a dead signal (0: off)
 };
 
-// Returns nullptr when the reading is plausible, else a static string naming the faulty signal.
-const char* check_sensors(const RobotModel& model, const SensorLimits& limits, const SensorData& s);
-
-// Detects a signal that stopped changing. A working F/T sensor or IMU always shows some noise, so
-// `frozen_cycles` bit-identical readings in a row mean a dead channel (cable, converter, driver).
-// Encoders are not watched: quantized, they rightly repeat while a joint stands still.
-class FrozenSignalDetector {
- public:
-  void reset(const SensorData& first);
-  // Returns nullptr, or a static string naming the frozen signal.
-  const char* update(const SensorData& s, int frozen_cycles);
-
- private:
-  std::array<Wrench, 2> last_wrench_;
-  Eigen::Vector3d last_rate_ = Eigen::Vector3d::Zero(), last_acceleration_ = Eigen::Vector3d::Zero();
-  std::array<int, 2> wrench_repeats_ = {0, 0};
-  int imu_repeats_ = 0;
-};
-
-// The joint angles a controller starts from: the encoder readings when the reading is plausible,
-// else the stand pose; clamped to the software limits.
-Eigen::VectorXd initial_joint_pose(const RobotModel& model, const SensorLimits& limits, const SensorData& first);
-// The same written into a full configuration (the stand keyframe's floating base).
-Eigen::VectorXd initial_configuration(const RobotModel& model, const SensorLimits& limits, const SensorData& first);
+// The first implausible signal of the reading (checked in the order time, encoders, IMU, F/T), or
+// no fault (a false Fault).
+Fault check_sensors(const RobotModel& model, const SensorLimits& limits, const SensorData& s);
 
 }  // namespace biped

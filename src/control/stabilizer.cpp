@@ -54,11 +54,11 @@ void Stabilizer::reset() {
   first_ = true;
 }
 
-void Stabilizer::contact_force_modification(const std::array<Wrench, 2>& ideal,
-                                            const std::array<bool, 2>& planned_contact,
-                                            const std::array<double, 2>& load_share, double tilt_sagittal,
-                                            double tilt_lateral, double rate_sagittal, double rate_lateral,
-                                            const Eigen::Vector2d& com_error, const Eigen::Vector2d& com_rate_error) {
+// eq. (10)
+void Stabilizer::contact_force_modification(const StabilizerInput& in, double tilt_sagittal, double tilt_lateral,
+                                            double rate_sagittal, double rate_lateral) {
+  const Eigen::Vector2d& com_error = in.com_error;
+  const Eigen::Vector2d& com_rate_error = in.com_rate_error;
   // Δx_IN = planned − measured; the plan keeps the upper body upright. Leaning forward, or the CoM
   // ahead of the plan, moves the desired CoP forward (T_y = −x_CoP F_z); leaning left, or the CoM
   // left of the plan, moves it left (T_x = y_CoP F_z).
@@ -69,13 +69,13 @@ void Stabilizer::contact_force_modification(const std::array<Wrench, 2>& ideal,
   for (Side side : kSides) {
     const int k = index_of(side);
     Wrench& d = desired_[k];
-    d = ideal[k];
-    if (!planned_contact[k]) {  // sat: a swing foot carries nothing
+    d = in.ideal[k];
+    if (!in.planned_contact[k]) {  // sat: a swing foot carries nothing
       d.torque.setZero();
       continue;
     }
-    d.torque.x() += load_share[k] * correction_x;
-    d.torque.y() += load_share[k] * correction_y;
+    d.torque.x() += in.load_share[k] * correction_x;
+    d.torque.y() += in.load_share[k] * correction_y;
     // sat: normal force ≥ 0, centre of pressure inside the sole with a margin.
     const FootInfo& foot = model_.foot(side);
     const double fz = std::max(0.0, d.force.z());
@@ -138,25 +138,21 @@ double Stabilizer::contact_stiffness() const {
   return params_.contact_stiffness * stiffness_scale_;
 }
 
-void Stabilizer::step(double dt, const std::array<Wrench, 2>& ideal, const std::array<bool, 2>& planned_contact,
-                      const std::array<double, 2>& load_share, const std::array<Wrench, 2>& measured,
-                      const Eigen::Quaterniond& imu_orientation, const Eigen::Vector3d& imu_rate,
-                      const Eigen::Vector2d& com_error, const Eigen::Vector2d& com_rate_error) {
-  const math::TiltAngles tilt = math::tilt_against_gravity(imu_orientation.toRotationMatrix());
+void Stabilizer::step(double dt, const StabilizerInput& in) {
+  const math::TiltAngles tilt = math::tilt_against_gravity(in.imu_orientation.toRotationMatrix());
   // Small-angle rates of the two tilt angles from the body-frame angular rate.
-  contact_force_modification(ideal, planned_contact, load_share, tilt.sagittal, tilt.lateral, imu_rate.y(),
-                             -imu_rate.x(), com_error, com_rate_error);
+  contact_force_modification(in, tilt.sagittal, tilt.lateral, in.imu_rate.y(), -in.imu_rate.x());
   if (first_) previous_desired_ = desired_;
   first_ = false;
   const double filter = dt / (params_.contact_filter_time + dt);
   for (int k = 0; k < 2; ++k) {
-    filtered_force_[k] += filter * (measured[k].force.z() - filtered_force_[k]);
+    filtered_force_[k] += filter * (in.measured[k].force.z() - filtered_force_[k]);
     const double contact =
         std::clamp((filtered_force_[k] - params_.contact_force_low) / (params_.contact_force_high - params_.contact_force_low), 0.0, 1.0);
-    alpha_[k] = planned_contact[k] ? contact : 0.0;
-    hybrid_position_force_control(k, dt, measured[k]);
+    alpha_[k] = in.planned_contact[k] ? contact : 0.0;
+    hybrid_position_force_control(k, dt, in.measured[k]);
   }
-  if (params_.stiffness_adaptation) adapt_contact_stiffness(dt, measured);
+  if (params_.stiffness_adaptation) adapt_contact_stiffness(dt, in.measured);
   previous_desired_ = desired_;
 }
 

@@ -12,10 +12,11 @@
 // matrix (docs/stabilizer.md). Feet without contact blend to position control (α_λ → 0), which
 // returns their modification to zero.
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <array>
 
 #include "control/contact_model.hpp"
-#include "control/interface.hpp"
+#include "math/wrench.hpp"
 #include "model/robot_model.hpp"
 
 namespace biped {
@@ -52,6 +53,20 @@ struct StabilizerParams {
   double adaptation_max_scale = 4.0;
 };
 
+// What the stabilizer reads each cycle: eq. (10)'s inputs and the measured wrenches of eq. (20).
+struct StabilizerInput {
+  std::array<Wrench, 2> ideal;             // λ_id of both feet (sensor frames), from the pattern
+  std::array<bool, 2> planned_contact{};   // the pattern's contact schedule
+  std::array<double, 2> load_share{};      // the pattern's split of the load
+  std::array<Wrench, 2> measured;          // the F/T readings
+  Eigen::Quaterniond imu_orientation = Eigen::Quaterniond::Identity();  // upper body in the world (IMU)
+  Eigen::Vector3d imu_rate = Eigen::Vector3d::Zero();                   // its angular rate, IMU frame [rad/s]
+  // Planned − estimated horizontal CoM relative to the stance foot (heading frame: x forward, y
+  // left) [m], and its rate [m/s]: eq. (10)'s Δr_CoM.
+  Eigen::Vector2d com_error = Eigen::Vector2d::Zero();
+  Eigen::Vector2d com_rate_error = Eigen::Vector2d::Zero();
+};
+
 // Per-foot modification of the position-controlled foot coordinates (foot frame).
 struct FootModification {
   Eigen::Vector3d offset = Eigen::Vector3d::Zero();  // Δx_λ: (z, φ_x, φ_y)
@@ -63,16 +78,8 @@ class Stabilizer {
   Stabilizer(const RobotModel& model, const StabilizerParams& params);
   void reset();
 
-  // One cycle. `ideal`: λ_id of both feet (sensor frames); `planned_contact`: the pattern's contact
-  // schedule; `load_share`: the pattern's split of the load; `measured`: the F/T readings;
-  // `imu_orientation`, `imu_rate`: the upper body's orientation and angular rate (IMU frame);
-  // `com_error`, `com_rate_error`: planned − estimated horizontal CoM relative to the stance foot
-  // (heading frame: x forward, y left).
-  void step(double dt, const std::array<Wrench, 2>& ideal, const std::array<bool, 2>& planned_contact,
-            const std::array<double, 2>& load_share, const std::array<Wrench, 2>& measured,
-            const Eigen::Quaterniond& imu_orientation, const Eigen::Vector3d& imu_rate,
-            const Eigen::Vector2d& com_error = Eigen::Vector2d::Zero(),
-            const Eigen::Vector2d& com_rate_error = Eigen::Vector2d::Zero());
+  // One cycle: eq. (10), then eq. (20) for each foot (and the stiffness estimate when enabled).
+  void step(double dt, const StabilizerInput& in);
 
   // eq. (11) for this cycle, before step(): each foot's contact elements placed with the measured
   // toe angle (encoders, RobotModel::joints() order) and their contact state from the F/T readings
@@ -89,11 +96,9 @@ class Stabilizer {
   double contact_stiffness() const;
 
  private:
-  // eq. (10) with its saturation.
-  void contact_force_modification(const std::array<Wrench, 2>& ideal, const std::array<bool, 2>& planned_contact,
-                                  const std::array<double, 2>& load_share, double tilt_sagittal,
-                                  double tilt_lateral, double rate_sagittal, double rate_lateral,
-                                  const Eigen::Vector2d& com_error, const Eigen::Vector2d& com_rate_error);
+  // eq. (10) with its saturation, from the tilt angles and their rates (sagittal, lateral).
+  void contact_force_modification(const StabilizerInput& in, double tilt_sagittal, double tilt_lateral,
+                                  double rate_sagittal, double rate_lateral);
   // eq. (20) for one foot.
   void hybrid_position_force_control(int foot, double dt, const Wrench& measured);
   // The contact-stiffness extension: updates the estimate from this cycle's readings.

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "control/initial_configuration.hpp"
+
 namespace biped {
 namespace {
 
@@ -25,7 +27,7 @@ StandingController::StandingController(const RobotModel& model, const StandingCo
 void StandingController::reset(const SensorData& first) {
   start_time_ = first.time;
   status_.fault = false;
-  status_.fault_reason = "";
+  status_.first_fault = Fault{};
   status_.state = "standing";
   start_pose_ = initial_joint_pose(model_, params_.sensor_limits, first);
   last_setpoint_ = start_pose_;
@@ -33,9 +35,9 @@ void StandingController::reset(const SensorData& first) {
 
 void StandingController::step(const SensorData& sensors, const WalkCommand& /*command*/, JointCommand& out) {
   if (!status_.fault) {
-    if (const char* fault = check_sensors(model_, params_.sensor_limits, sensors)) {
+    if (const Fault fault = check_sensors(model_, params_.sensor_limits, sensors)) {
       status_.fault = true;
-      status_.fault_reason = fault;
+      status_.first_fault = fault;
       status_.state = "safe_stop";
     }
   }

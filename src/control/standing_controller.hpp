@@ -2,8 +2,8 @@
 // The standing controller: moves from the measured joint angles to the model's reference standing
 // pose (keyframe "stand") and holds it. It takes the same slot as the walking controller and checks
 // the sensors the same way: on a fault it enters the safe stop state and holds its last set-point.
-#include "control/interface.hpp"
 #include "control/sensor_check.hpp"
+#include "interface/controller.hpp"
 
 namespace biped {
 

@@ -12,8 +12,6 @@ void blend(double t, double start, double duration, double& s, double& rate) {
   rate = (t > start && t < start + duration) ? 30.0 * tau * tau * (1.0 - tau) * (1.0 - tau) / duration : 0.0;
 }
 
-Side other(Side s) { return s == Side::Left ? Side::Right : Side::Left; }
-
 }  // namespace
 
 WeightShiftController::WeightShiftController(const RobotModel& model, const WeightShiftParams& params)
@@ -43,16 +41,16 @@ void WeightShiftController::reset(const SensorData& first) {
   x_start_ = data.x;
   // Over the middle of the stance sole: its centre lies ahead of the ankle by the sole's offset.
   const FootInfo& foot = model_.foot(params_.stance);
-  const double sole_centre_x = model_.mj()->site_pos[3 * foot.sensor_site] + 0.5 * (foot.sole_x_min + foot.sole_x_max);
+  const double sole_centre_x = foot.sensor_position.x() + 0.5 * (foot.sole_x_min + foot.sole_x_max);
   const Eigen::Vector3d target = data.foot_position[index_of(params_.stance)] + Eigen::Vector3d(sole_centre_x, 0.0, 0.0);
   com_shift_ << target.x() - data.com.x(), target.y() - data.com.y(), 0.0;
 }
 
 void WeightShiftController::step(const SensorData& sensors, const WalkCommand& /*command*/, JointCommand& out) {
   if (!status_.fault) {
-    if (const char* fault = check_sensors(model_, params_.sensor_limits, sensors)) {
+    if (const Fault fault = check_sensors(model_, params_.sensor_limits, sensors)) {
       status_.fault = true;
-      status_.fault_reason = fault;
+      status_.first_fault = fault;
       status_.state = "safe_stop";
     }
   }

@@ -3,9 +3,10 @@
 // motion without walking. The CoM shifts over the stance foot, the other foot lifts and is put
 // down again, and the CoM shifts back, each phase a quintic blend (zero velocity and acceleration
 // at its ends). It exercises the task space, eq. (21) and the joint servos on their own.
-#include "control/interface.hpp"
+#include "control/initial_configuration.hpp"
 #include "control/resolved_motion_rate_control.hpp"
 #include "control/sensor_check.hpp"
+#include "interface/controller.hpp"
 #include "model/task_space.hpp"
 
 namespace biped {

@@ -4,7 +4,7 @@
 #include <cstdlib>
 #include <filesystem>
 
-#include "io/step_tables.hpp"
+#include "io/step_table_file.hpp"
 #include "io/yaml_reader.hpp"
 
 namespace fs = std::filesystem;
@@ -146,15 +146,15 @@ void read_controller(const YamlReader& r, const YAML::Node& c, ControllerConfig&
   if (c["step_table"]) {
     const std::string table = resolve(r.text(c, "controller", "step_table"), r.file());
     if (!fs::exists(table)) r.fail(c["step_table"], "controller.step_table", "no such file: " + table);
-    w.table = read_step_table(table);
-    w.limits.vx_max = std::min(w.limits.vx_max, fastest_feasible_speed(w.table));
+    w.plan.table = read_step_table(table);
+    w.plan.limits.vx_max = std::min(w.plan.limits.vx_max, fastest_feasible_speed(w.plan.table));
   }
-  w.step.step_time = r.positive_or(c, "controller", "step_time", w.step.step_time);
-  w.step.double_support_ratio = r.positive_or(c, "controller", "double_support_ratio", w.step.double_support_ratio);
-  if (w.step.double_support_ratio >= 0.8) r.fail(c["double_support_ratio"], "controller.double_support_ratio", "must be below 0.8");
-  w.step.clearance = r.non_negative_or(c, "controller", "clearance", w.step.clearance);
-  w.start_shift = r.non_negative_or(c, "controller", "start_shift", w.start_shift);
-  w.arm_swing_gain = r.non_negative_or(c, "controller", "arm_swing_gain", w.arm_swing_gain);
+  w.plan.step.step_time = r.positive_or(c, "controller", "step_time", w.plan.step.step_time);
+  w.plan.step.double_support_ratio = r.positive_or(c, "controller", "double_support_ratio", w.plan.step.double_support_ratio);
+  if (w.plan.step.double_support_ratio >= 0.8) r.fail(c["double_support_ratio"], "controller.double_support_ratio", "must be below 0.8");
+  w.plan.step.clearance = r.non_negative_or(c, "controller", "clearance", w.plan.step.clearance);
+  w.plan.start_shift = r.non_negative_or(c, "controller", "start_shift", w.plan.start_shift);
+  w.plan.arm_swing_gain = r.non_negative_or(c, "controller", "arm_swing_gain", w.plan.arm_swing_gain);
   w.rmrc.task_gain = r.positive_or(c, "controller", "task_gain", w.rmrc.task_gain);
   if (w.rmrc.task_gain > 1.0) r.fail(c["task_gain"], "controller.task_gain", "must be at most 1 (fraction of the error per cycle)");
   w.rmrc.null_space_gain = r.non_negative_or(c, "controller", "null_space_gain", w.rmrc.null_space_gain);
@@ -162,11 +162,11 @@ void read_controller(const YamlReader& r, const YAML::Node& c, ControllerConfig&
   const YAML::Node limits = r.mapping(c, "controller", "limits");
   r.expect_keys(limits, "controller.limits", {"vx_min", "vx_max", "vx_rate", "vy_max", "omega_max"});
   if (limits) {
-    w.limits.vx_min = r.number_or(limits, "controller.limits", "vx_min", w.limits.vx_min);
-    w.limits.vx_max = r.non_negative_or(limits, "controller.limits", "vx_max", w.limits.vx_max);
-    w.limits.vx_rate = r.positive_or(limits, "controller.limits", "vx_rate", w.limits.vx_rate);
-    w.limits.vy_max = r.non_negative_or(limits, "controller.limits", "vy_max", w.limits.vy_max);
-    w.limits.omega_max = r.non_negative_or(limits, "controller.limits", "omega_max", w.limits.omega_max);
+    w.plan.limits.vx_min = r.number_or(limits, "controller.limits", "vx_min", w.plan.limits.vx_min);
+    w.plan.limits.vx_max = r.non_negative_or(limits, "controller.limits", "vx_max", w.plan.limits.vx_max);
+    w.plan.limits.vx_rate = r.positive_or(limits, "controller.limits", "vx_rate", w.plan.limits.vx_rate);
+    w.plan.limits.vy_max = r.non_negative_or(limits, "controller.limits", "vy_max", w.plan.limits.vy_max);
+    w.plan.limits.omega_max = r.non_negative_or(limits, "controller.limits", "omega_max", w.plan.limits.omega_max);
   }
   if (c["model"]) {
     p.model_path = resolve(r.text(c, "controller", "model"), r.file());

@@ -13,8 +13,6 @@ constexpr double kRadToDeg = 180.0 / M_PI;
 constexpr double kContactOnN = 50.0;   // touchdown: ground-truth normal force rises above this
 constexpr double kContactOffN = 10.0;  // lift-off: falls below this
 
-double wrap_angle(double a) { return std::atan2(std::sin(a), std::cos(a)); }
-
 double percentile(std::vector<double> v, double p) {
   if (v.empty()) return 0.0;
   const std::size_t k = std::min(v.size() - 1, static_cast<std::size_t>(std::floor(p * (v.size() - 1) + 0.5)));
@@ -132,7 +130,7 @@ nlohmann::json RunRecorder::summary(const std::string& robot, const std::string&
   j["mean_speed_mps"] = result.sim_time > 0.0 ? distance / result.sim_time : 0.0;
   j["steps"] = touchdowns_;
   j["final_base_position"] = {final_pos_[0], final_pos_[1], final_pos_[2]};
-  j["heading_change_rad"] = wrap_angle(final_yaw_ - start_yaw_);
+  j["heading_change_rad"] = math::wrap_angle(final_yaw_ - start_yaw_);
   j["upper_body_tilt_deg"] = {{"rms_x", std::sqrt(sum_x / n) * kRadToDeg},
                               {"rms_y", std::sqrt(sum_y / n) * kRadToDeg},
                               {"max", max_tilt_ * kRadToDeg}};
@@ -142,7 +140,7 @@ nlohmann::json RunRecorder::summary(const std::string& robot, const std::string&
                                                               : *std::max_element(result.cycle_us.begin(),
                                                                                   result.cycle_us.end())}};
   j["final_state"] = final_status.state;
-  j["fault"] = final_status.fault ? nlohmann::json(final_status.fault_reason) : nlohmann::json(nullptr);
+  j["fault"] = final_status.fault ? nlohmann::json(describe(final_status.first_fault)) : nlohmann::json(nullptr);
   return j;
 }
 

@@ -163,6 +163,10 @@ RobotModel RobotModel::adopt(mjModel* compiled, const std::string& mjcf_path, do
     }
     model.joints_.push_back(std::move(info));
   }
+  for (Side side : kSides) {
+    model.leg_root_joint_[index_of(side)] = model.joint_index(std::string(name_of(side)) + "_hip_yaw");
+    model.arm_root_joint_[index_of(side)] = model.joint_index(std::string(name_of(side)) + "_shoulder_pitch");
+  }
 
   for (Side side : kSides) {
     FootInfo& foot = model.feet_[index_of(side)];
@@ -172,6 +176,7 @@ RobotModel RobotModel::adopt(mjModel* compiled, const std::string& mjcf_path, do
     if (m->site_bodyid[foot.sensor_site] != foot.body) {
       throw ModelError(mjcf_path + ": site '" + prefix + "_ft' must be in body '" + prefix + "_foot'");
     }
+    foot.sensor_position = Eigen::Vector3d(m->site_pos + 3 * foot.sensor_site);
     for (int b = 1; b < m->nbody; ++b) {
       if (!is_in_subtree(m, b, foot.body)) continue;
       foot.bodies_below_sensor.push_back(b);
@@ -213,11 +218,37 @@ int RobotModel::joint_index(std::string_view joint_name) const {
   return -1;
 }
 
+double RobotModel::gravity() const { return std::abs(model_->opt.gravity[2]); }
+
 double RobotModel::weight_above_sensors() const {
-  const double g = std::abs(model_->opt.gravity[2]);
-  return (total_mass_ - feet_[0].mass_below_sensor - feet_[1].mass_below_sensor) * g;
+  return (total_mass_ - feet_[0].mass_below_sensor - feet_[1].mass_below_sensor) * gravity();
 }
 
-RobotData::RobotData(const RobotModel& model) : data_(mj_makeData(model.mj())) {}
+RobotData::RobotData(const RobotModel& model) : model_(&model), data_(mj_makeData(model.mj())) {}
+
+Eigen::Map<Eigen::VectorXd> RobotData::qpos() { return {data_->qpos, model_->nq()}; }
+
+Eigen::Vector3d RobotData::body_position(int body) const { return Eigen::Vector3d(data_->xpos + 3 * body); }
+
+Eigen::Matrix3d RobotData::body_rotation(int body) const {
+  return Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(data_->xmat + 9 * body);
+}
+
+Eigen::Quaterniond RobotData::body_orientation(int body) const {
+  const double* q = data_->xquat + 4 * body;  // w, x, y, z
+  return Eigen::Quaterniond(q[0], q[1], q[2], q[3]);
+}
+
+Eigen::Vector3d RobotData::site_position(int site) const { return Eigen::Vector3d(data_->site_xpos + 3 * site); }
+
+Eigen::Matrix3d RobotData::site_rotation(int site) const {
+  return Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(data_->site_xmat + 9 * site);
+}
+
+Eigen::Vector3d RobotData::joint_anchor(int joint) const {
+  return Eigen::Vector3d(data_->xanchor + 3 * model_->joints()[joint].mj_joint);
+}
+
+Eigen::Vector3d RobotData::subtree_com(int body) const { return Eigen::Vector3d(data_->subtree_com + 3 * body); }
 
 }  // namespace biped

@@ -5,12 +5,15 @@
 #include <mujoco/mujoco.h>
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <array>
 #include <memory>
 #include <stdexcept>
 #include <string>
 #include <string_view>
 #include <vector>
+
+#include "math/side.hpp"
 
 namespace biped {
 
@@ -19,11 +22,6 @@ class ModelError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
 };
-
-enum class Side { Left = 0, Right = 1 };
-inline constexpr std::array<Side, 2> kSides = {Side::Left, Side::Right};
-inline constexpr int index_of(Side s) { return static_cast<int>(s); }
-inline constexpr const char* name_of(Side s) { return s == Side::Left ? "left" : "right"; }
 
 struct JointInfo {
   std::string name;
@@ -55,6 +53,7 @@ struct FootInfo {
   static constexpr int kMaxSegments = 2;
   int body = -1;         // body directly below the F/T sensor
   int sensor_site = -1;  // F/T sensor frame
+  Eigen::Vector3d sensor_position = Eigen::Vector3d::Zero();  // the sensor frame's origin in `body`'s frame
   std::vector<int> bodies_below_sensor;
   std::vector<int> sole_geoms;
   double mass_below_sensor = 0.0;
@@ -74,14 +73,23 @@ class RobotModel {
   // where it came from in error messages.
   static RobotModel adopt(mjModel* compiled, const std::string& origin, double software_limit_margin_rad);
 
+  // The compiled MuJoCo model: for model/ and sim/ only (control/ and planning/ use the functions
+  // of model/, docs/architecture.md).
   const mjModel* mj() const { return model_.get(); }
   const std::string& path() const { return path_; }
   const std::string& name() const { return name_; }
+  int nq() const { return model_->nq; }  // size of a full configuration (floating base included)
+  int nv() const { return model_->nv; }  // generalized velocities
+  double gravity() const;                // [m/s²], magnitude
 
   int num_joints() const { return static_cast<int>(joints_.size()); }
   const std::vector<JointInfo>& joints() const { return joints_; }
   // Index in joints() of the joint with that name, or -1.
   int joint_index(std::string_view joint_name) const;
+  // The first joint of each leg ("<side>_hip_yaw") and of each arm ("<side>_shoulder_pitch"), as
+  // indices in joints(); -1 where the model has none.
+  int leg_root_joint(Side s) const { return leg_root_joint_[index_of(s)]; }
+  int arm_root_joint(Side s) const { return arm_root_joint_[index_of(s)]; }
 
   const FootInfo& foot(Side s) const { return feet_[index_of(s)]; }
   int pelvis_body() const { return pelvis_body_; }
@@ -105,6 +113,8 @@ class RobotModel {
   std::string name_;
   std::vector<JointInfo> joints_;
   std::array<FootInfo, 2> feet_;
+  std::array<int, 2> leg_root_joint_{-1, -1};
+  std::array<int, 2> arm_root_joint_{-1, -1};
   int pelvis_body_ = -1;
   int upper_body_ = -1;
   int imu_site_ = -1;
@@ -113,17 +123,31 @@ class RobotModel {
   Eigen::VectorXd stand_qpos_;
 };
 
-// Preallocated MuJoCo workspace for computations on a RobotModel.
+// Preallocated workspace for computations on a RobotModel (a MuJoCo mjData). Its configuration is
+// set through qpos(); forward_kinematics() (model/kinematics.hpp) then fills the frames read below.
 class RobotData {
  public:
   explicit RobotData(const RobotModel& model);
+  // For model/ and sim/ only, like RobotModel::mj().
   mjData* mj() { return data_.get(); }
   const mjData* mj() const { return data_.get(); }
+
+  // The configuration (size nq: floating base position, w-x-y-z quaternion, joint angles).
+  Eigen::Map<Eigen::VectorXd> qpos();
+  // World-frame frames of the last forward_kinematics():
+  Eigen::Vector3d body_position(int body) const;     // body frame origin
+  Eigen::Matrix3d body_rotation(int body) const;
+  Eigen::Quaterniond body_orientation(int body) const;
+  Eigen::Vector3d site_position(int site) const;
+  Eigen::Matrix3d site_rotation(int site) const;
+  Eigen::Vector3d joint_anchor(int joint) const;     // a point on the axis of joints()[joint]
+  Eigen::Vector3d subtree_com(int body) const;       // CoM of the body and all below it (needs the CoM pass)
 
  private:
   struct MjDataDeleter {
     void operator()(mjData* d) const { mj_deleteData(d); }
   };
+  const RobotModel* model_;
   std::unique_ptr<mjData, MjDataDeleter> data_;
 };
 

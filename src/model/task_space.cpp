@@ -1,44 +1,11 @@
 #include "model/task_space.hpp"
 
+#include "math/rotations.hpp"
+
 #include <algorithm>
 #include <cmath>
 
 namespace biped {
-namespace so3 {
-
-Eigen::Vector3d log(const Eigen::Quaterniond& q_in) {
-  // q and −q are the same rotation; w ≥ 0 gives the angle in [0, π].
-  const Eigen::Quaterniond q = q_in.w() < 0.0 ? Eigen::Quaterniond(-q_in.coeffs()) : q_in;
-  const double s = q.vec().norm();  // sin(θ/2)
-  // θ/s = 2 atan2(s, w)/s is well-conditioned down to s → 0, where it tends to 2/w.
-  const double scale = s < 1e-12 ? 2.0 / q.w() : 2.0 * std::atan2(s, q.w()) / s;
-  return scale * q.vec();
-}
-
-Eigen::Matrix3d exp(const Eigen::Vector3d& phi) {
-  const double angle = phi.norm();
-  if (angle < 1e-300) return Eigen::Matrix3d::Identity();
-  return Eigen::AngleAxisd(angle, phi / angle).toRotationMatrix();
-}
-
-Eigen::Matrix3d inverse_left_jacobian(const Eigen::Vector3d& phi) {
-  // J_l⁻¹ = I − ½[φ]× + c(θ)[φ]×², c = 1/θ² − (1 + cos θ)/(2θ sin θ).
-  const double theta2 = phi.squaredNorm();
-  double c;
-  if (theta2 < 1e-4) {
-    // Taylor series of c: the closed form loses digits to cancellation for small θ.
-    c = 1.0 / 12.0 + theta2 / 720.0 + theta2 * theta2 / 30240.0;
-  } else {
-    const double theta = std::sqrt(theta2);
-    c = 1.0 / theta2 - (1.0 + std::cos(theta)) / (2.0 * theta * std::sin(theta));
-  }
-  Eigen::Matrix3d hat;
-  hat << 0.0, -phi.z(), phi.y(), phi.z(), 0.0, -phi.x(), -phi.y(), phi.x(), 0.0;
-  return Eigen::Matrix3d::Identity() - 0.5 * hat + c * hat * hat;
-}
-
-}  // namespace so3
-
 namespace {
 
 // All bodies in the subtree of `root` (root included).
@@ -62,10 +29,7 @@ void add_rows(std::vector<std::string>& names, const std::string& prefix, int co
   for (int i = 0; i < count; ++i) names.push_back(prefix + suffixes[i]);
 }
 
-Eigen::Quaterniond body_quat(const mjData* d, int body) {
-  const double* q = d->xquat + 4 * body;  // w, x, y, z
-  return Eigen::Quaterniond(q[0], q[1], q[2], q[3]);
-}
+Eigen::Quaterniond body_quat(const mjData* d, int body) { return math::quat_from_mujoco(d->xquat + 4 * body); }
 
 }  // namespace
 
@@ -166,9 +130,9 @@ void evaluate(const TaskSpace& space, const Eigen::VectorXd& qpos, const Eigen::
 
     // φ = log(R_UBᵀ R_foot); its rate is J_l⁻¹(φ) R_UBᵀ (ω_foot − ω_UB).
     const int o = layout.foot_orientation[s];
-    const Eigen::Vector3d phi = so3::log(q_ub.conjugate() * body_quat(d, body));
+    const Eigen::Vector3d phi = math::so3::log(q_ub.conjugate() * body_quat(d, body));
     x.segment<3>(o) = phi;
-    const Eigen::Matrix3d map = so3::inverse_left_jacobian(phi) * data.upper_body_rotation.transpose();
+    const Eigen::Matrix3d map = math::so3::inverse_left_jacobian(phi) * data.upper_body_rotation.transpose();
     data.jac_tmp_ = data.jac_rot_ - data.jac_upper_body_rot_;
     J.middleRows<3>(o).noalias() = map * data.jac_tmp_;
 
@@ -182,9 +146,9 @@ void evaluate(const TaskSpace& space, const Eigen::VectorXd& qpos, const Eigen::
 
   // φ_UB = log(R_refᵀ R_UB); its rate is J_l⁻¹(φ_UB) R_refᵀ ω_UB.
   const int u = layout.upper_body_orientation;
-  const Eigen::Vector3d phi_ub = so3::log(Eigen::Quaterniond(R_ref).conjugate() * q_ub);
+  const Eigen::Vector3d phi_ub = math::so3::log(Eigen::Quaterniond(R_ref).conjugate() * q_ub);
   x.segment<3>(u) = phi_ub;
-  const Eigen::Matrix3d map = so3::inverse_left_jacobian(phi_ub) * R_ref.transpose();
+  const Eigen::Matrix3d map = math::so3::inverse_left_jacobian(phi_ub) * R_ref.transpose();
   J.middleRows<3>(u).noalias() = map * data.jac_upper_body_rot_;
 
   const int c = layout.com;

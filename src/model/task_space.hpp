@@ -13,15 +13,6 @@
 
 namespace biped {
 
-// Rotation vectors (so(3) coordinates).
-namespace so3 {
-// φ with exp([φ]×) = R, |φ| ≤ π.
-Eigen::Vector3d log(const Eigen::Quaterniond& q);
-Eigen::Matrix3d exp(const Eigen::Vector3d& phi);
-// J_l⁻¹(φ): for R = exp([φ]×) and Ṙ = [ω]× R, φ̇ = J_l⁻¹(φ) ω. Singular at |φ| = π.
-Eigen::Matrix3d inverse_left_jacobian(const Eigen::Vector3d& phi);
-}  // namespace so3
-
 // Which rows of x hold what. Built in one place (TaskSpace's constructor) from the model:
 //   foot position (world frame) − robot CoM         3 per foot   right, left
 //   foot orientation relative to the upper body      3 per foot   right, left
@@ -79,7 +70,9 @@ class TaskSpaceData {
   Eigen::Matrix3d upper_body_rotation = Eigen::Matrix3d::Identity();
   Eigen::Vector3d upper_body_position = Eigen::Vector3d::Zero();  // body origin, world frame
 
+  // The MuJoCo frames of the last evaluate() (its forward kinematics with CoMs).
   RobotData& robot_data() { return robot_data_; }
+  const RobotData& robot_data() const { return robot_data_; }
 
  private:
   friend void evaluate(const TaskSpace&, const Eigen::VectorXd&, const Eigen::Matrix3d&, TaskSpaceData&);

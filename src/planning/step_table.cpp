@@ -26,4 +26,12 @@ StepParameters StepTable::lookup(double speed, const StepParameters& base) const
   return p;
 }
 
+double fastest_feasible_speed(const StepTable& table) {
+  double fastest = 0.0;
+  for (const StepTableRow& r : table.rows) {
+    if (r.zmp_margin > 0.0) fastest = std::max(fastest, r.speed);
+  }
+  return fastest;
+}
+
 }  // namespace biped

@@ -3,7 +3,7 @@
 // set-points held over each control period (zero-order hold).
 #include <vector>
 
-#include "control/interface.hpp"
+#include "interface/controller.hpp"
 #include "sim/simulation.hpp"
 
 namespace biped {

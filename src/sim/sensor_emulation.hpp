@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "control/interface.hpp"
+#include "interface/sensor_data.hpp"
 #include "model/robot_model.hpp"
 
 namespace biped {

@@ -9,7 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "control/interface.hpp"
+#include "interface/commands.hpp"
+#include "interface/sensor_data.hpp"
 #include "model/robot_model.hpp"
 #include "sim/fall_detection.hpp"
 #include "sim/joint_drives.hpp"

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "kinematic_loop.hpp"
+#include "math/rotations.hpp"
 #include "test_support.hpp"
 
 namespace biped {
@@ -65,7 +66,7 @@ Eigen::Matrix3d finite_difference_stiffness(const FootInfo& foot, double q, int 
     delta[i] = h;
     const auto wrench = [&](double sign) {
       const Eigen::Vector3d tilt(sign * delta[1], sign * delta[2], 0.0);
-      return point_contact_wrench(foot, kParams, q, p + Eigen::Vector3d(0, 0, sign * delta[0]), R * so3::exp(tilt), ground);
+      return point_contact_wrench(foot, kParams, q, p + Eigen::Vector3d(0, 0, sign * delta[0]), R * math::so3::exp(tilt), ground);
     };
     K_fd.col(i) = -(wrench(1.0) - wrench(-1.0)) / (2.0 * h);
   }

@@ -13,6 +13,7 @@
 #include "control/resolved_motion_rate_control_svd.hpp"
 
 #include "apps/allocation_counter.hpp"
+#include "math/rotations.hpp"
 
 namespace biped {
 namespace {
@@ -66,7 +67,7 @@ class RmrcTest : public ::testing::TestWithParam<Robot> {
   bool draw_well_conditioned(std::mt19937& rng, Eigen::VectorXd& q, Eigen::Matrix3d& R_ref) {
     q = random_configuration(model, rng);
     evaluate(space, q, Eigen::Matrix3d::Identity(), task);
-    R_ref = task.upper_body_rotation * so3::exp(random_vector(rng, 3, 0.2));
+    R_ref = task.upper_body_rotation * math::so3::exp(random_vector(rng, 3, 0.2));
     evaluate(space, q, R_ref, task);
     return smallest_singular_value(task.J) > 2.0 * RmrcDampingParams{}.singular_value_threshold;
   }
@@ -170,7 +171,7 @@ TEST_P(RmrcTest, TracksSmoothTaskTrajectories) {
     // Base orientation R_stand exp([θ]): its body-frame angular velocity is J_r(θ) θ̇ with the
     // right Jacobian J_r(θ) = J_l(θ)ᵀ.
     const Eigen::Vector3d theta = offset.segment<3>(3);
-    rate.segment<3>(3) = so3::inverse_left_jacobian(theta).inverse().transpose() * rate.segment<3>(3).eval();
+    rate.segment<3>(3) = math::so3::inverse_left_jacobian(theta).inverse().transpose() * rate.segment<3>(3).eval();
     q_ref = model.stand_qpos();
     mj_integratePos(model.mj(), q_ref.data(), offset.data(), 1.0);
     evaluate(space, q_ref, Eigen::Matrix3d::Identity(), task);

@@ -21,63 +21,47 @@ class SensorCheck : public ::testing::Test {
   }
 };
 
-TEST_F(SensorCheck, PlausibleReadingPasses) { EXPECT_EQ(check_sensors(model, limits, good()), nullptr); }
+TEST_F(SensorCheck, PlausibleReadingPasses) { EXPECT_FALSE(check_sensors(model, limits, good())); }
 
-TEST_F(SensorCheck, EachFaultIsNamed) {
+// Each fault names its signal, and the side or joint, as data.
+TEST_F(SensorCheck, EachFaultNamesItsSignalSideAndJoint) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
+  auto expect = [](const Fault& f, FaultSignal signal, int index, const char* text) {
+    EXPECT_EQ(f.signal, signal) << text;
+    EXPECT_EQ(f.check, FaultCheck::Implausible) << text;
+    EXPECT_EQ(f.index, index) << text;
+    EXPECT_STREQ(describe(f), text);
+  };
   SensorData s = good();
   s.foot_wrench[1].torque.y() = nan;
-  EXPECT_STREQ(check_sensors(model, limits, s), "right F/T sensor");
+  expect(check_sensors(model, limits, s), FaultSignal::ForceTorque, index_of(Side::Right), "right F/T sensor");
   s = good();
   s.foot_wrench[0].force.z() = 1e5;
-  EXPECT_STREQ(check_sensors(model, limits, s), "left F/T sensor");
+  expect(check_sensors(model, limits, s), FaultSignal::ForceTorque, index_of(Side::Left), "left F/T sensor");
   s = good();
   s.joint_position[3] = model.joints()[3].upper + 0.2;
-  EXPECT_STREQ(check_sensors(model, limits, s), "joint encoder");
+  expect(check_sensors(model, limits, s), FaultSignal::JointEncoder, 3, "joint encoder");
   s = good();
   s.imu_angular_rate.x() = nan;
-  EXPECT_STREQ(check_sensors(model, limits, s), "imu angular rate");
+  expect(check_sensors(model, limits, s), FaultSignal::ImuAngularRate, -1, "imu angular rate");
   s = good();
   s.imu_orientation.coeffs() *= 2.0;
-  EXPECT_STREQ(check_sensors(model, limits, s), "imu orientation");
+  expect(check_sensors(model, limits, s), FaultSignal::ImuOrientation, -1, "imu orientation");
   s = good();
   s.imu_acceleration.z() = std::numeric_limits<double>::infinity();
-  EXPECT_STREQ(check_sensors(model, limits, s), "imu acceleration");
+  expect(check_sensors(model, limits, s), FaultSignal::ImuAcceleration, -1, "imu acceleration");
+  s = good();
+  s.time = nan;
+  expect(check_sensors(model, limits, s), FaultSignal::Time, -1, "time");
 }
 
-// A frozen F/T channel is reported after `frozen_cycles` identical readings, not before; a reading
-// that changes, however little, restarts the count.
-TEST_F(SensorCheck, FrozenSignalIsReportedAfterTheConfiguredNumberOfRepeats) {
-  FrozenSignalDetector detector;
+// An encoder within its margin beyond the hard limit is plausible; beyond it is not.
+TEST_F(SensorCheck, EncoderMarginIsHonoured) {
   SensorData s = good();
-  s.foot_wrench[0].force.z() = 300.0;
-  detector.reset(s);
-  for (int i = 1; i <= 20; ++i) {
-    s.foot_wrench[1].force.z() = 300.0 + 1e-9 * i;  // the right sensor and the IMU stay alive
-    s.imu_angular_rate.x() = 1e-9 * i;
-    const char* fault = detector.update(s, 5);
-    if (i < 5) {
-      EXPECT_EQ(fault, nullptr) << i;
-    } else {
-      EXPECT_STREQ(fault, "left F/T sensor frozen") << i;
-    }
-  }
-  s.foot_wrench[0].force.z() += 1e-9;
-  EXPECT_EQ(detector.update(s, 5), nullptr) << "a changing reading restarts the count";
-  for (int i = 0; i < 10; ++i) EXPECT_EQ(detector.update(s, 0), nullptr) << "0 switches the check off";
-}
-
-TEST_F(SensorCheck, FrozenImuIsReported) {
-  FrozenSignalDetector detector;
-  SensorData s = good();
-  detector.reset(s);
-  const char* fault = nullptr;
-  for (int i = 1; i <= 3 && !fault; ++i) {
-    s.foot_wrench[0].force.z() = i;
-    s.foot_wrench[1].force.z() = i;
-    fault = detector.update(s, 3);
-  }
-  EXPECT_STREQ(fault, "imu frozen");
+  s.joint_position[2] = model.joints()[2].lower - 0.5 * limits.encoder_margin;
+  EXPECT_FALSE(check_sensors(model, limits, s));
+  s.joint_position[2] = model.joints()[2].lower - 2.0 * limits.encoder_margin;
+  EXPECT_TRUE(check_sensors(model, limits, s));
 }
 
 }  // namespace

@@ -11,11 +11,24 @@
 
 #include "io/robot_config.hpp"
 #include "io/scenario.hpp"
-#include "io/scenario_runner.hpp"
+#include "studies/scenario_runner.hpp"
 #include "test_support.hpp"
 
 namespace biped {
 namespace {
+
+// The stabilizer's input for a pattern with the given contact schedule and wrenches, no CoM error.
+StabilizerInput input(const std::array<Wrench, 2>& ideal, std::array<bool, 2> contact, std::array<double, 2> share,
+                      const std::array<Wrench, 2>& measured,
+                      const Eigen::Quaterniond& orientation = Eigen::Quaterniond::Identity()) {
+  StabilizerInput in;
+  in.ideal = ideal;
+  in.planned_contact = contact;
+  in.load_share = share;
+  in.measured = measured;
+  in.imu_orientation = orientation;
+  return in;
+}
 
 std::array<Wrench, 2> standing_wrenches(double weight) {
   std::array<Wrench, 2> w;
@@ -30,17 +43,17 @@ TEST(Stabilizer, ContactForceModificationMovesTheCopAgainstTheTiltInsideTheSole)
   Stabilizer stabilizer(model, params);
   const auto ideal = standing_wrenches(500.0);
   const Eigen::Quaterniond forward(Eigen::AngleAxisd(0.02, Eigen::Vector3d::UnitY()));
-  stabilizer.step(0.001, ideal, {true, true}, {0.5, 0.5}, ideal, forward, Eigen::Vector3d::Zero());
+  stabilizer.step(0.001, input(ideal, {true, true}, {0.5, 0.5}, ideal, forward));
   for (const Wrench& d : stabilizer.desired()) {
     EXPECT_LT(d.torque.y(), 0.0) << "leaning forward: CoP forward, T_y = −x_CoP F_z < 0";
     EXPECT_NEAR(d.torque.x(), 0.0, 1e-9);
   }
   const Eigen::Quaterniond left(Eigen::AngleAxisd(-0.02, Eigen::Vector3d::UnitX()));
-  stabilizer.step(0.001, ideal, {true, true}, {0.5, 0.5}, ideal, left, Eigen::Vector3d::Zero());
+  stabilizer.step(0.001, input(ideal, {true, true}, {0.5, 0.5}, ideal, left));
   for (const Wrench& d : stabilizer.desired()) EXPECT_GT(d.torque.x(), 0.0) << "leaning left: CoP left";
   // A huge tilt saturates at the sole's edge minus the margin.
   const Eigen::Quaterniond far(Eigen::AngleAxisd(0.5, Eigen::Vector3d::UnitY()));
-  stabilizer.step(0.001, ideal, {true, false}, {1.0, 0.0}, ideal, far, Eigen::Vector3d::Zero());
+  stabilizer.step(0.001, input(ideal, {true, false}, {1.0, 0.0}, ideal, far));
   const Wrench& d = stabilizer.desired()[0];
   const double cop_x = -d.torque.y() / d.force.z();
   EXPECT_NEAR(cop_x, model.foot(Side::Left).sole_x_max - params.cop_margin, 1e-9);
@@ -58,7 +71,7 @@ TEST(Stabilizer, ForceControlTiltsTheFootToReduceTheTorqueError) {
   const auto ideal = standing_wrenches(400.0);
   auto measured = ideal;
   measured[0].torque.y() = -10.0;  // CoP 5 cm ahead of where λ_id wants it
-  stabilizer.step(0.001, ideal, {true, true}, {0.5, 0.5}, measured, Eigen::Quaterniond::Identity(), Eigen::Vector3d::Zero());
+  stabilizer.step(0.001, input(ideal, {true, true}, {0.5, 0.5}, measured));
   const FootModification& m = stabilizer.modification()[0];
   // Tilting about +y moves the CoP forward (T_y decreases): to raise T_y the foot tilts about −y.
   EXPECT_LT(m.rate[2], 0.0);
@@ -89,7 +102,7 @@ TEST(Stabilizer, PitchGainScaleActsOnThePitchTorqueOnly) {
   auto measured = ideal;
   measured[0].torque.y() = -10.0;
   measured[0].torque.x() = 10.0;
-  stabilizer.step(0.001, ideal, {true, true}, {0.5, 0.5}, measured, Eigen::Quaterniond::Identity(), Eigen::Vector3d::Zero());
+  stabilizer.step(0.001, input(ideal, {true, true}, {0.5, 0.5}, measured));
   const Eigen::Vector3d torque_rate = -stabilizer.contact_stiffness_matrix()[0] * stabilizer.modification()[0].rate;
   EXPECT_NEAR(torque_rate[2], 0.5 * params.force_gain * 10.0, 1e-6);
   EXPECT_NEAR(torque_rate[1], -params.force_gain * 10.0, 1e-6);
@@ -134,7 +147,7 @@ double ramp_tracking_error(const StabilizerParams& params) {
   std::array<Wrench, 2> ideal = standing_wrenches(500.0), measured = ideal;
   for (int i = 0; i < 3000; ++i) {
     if (i >= 1000) ideal[0].force.z() += 200.0 * dt;
-    stabilizer.step(dt, ideal, {true, true}, {0.5, 0.5}, measured, Eigen::Quaterniond::Identity(), Eigen::Vector3d::Zero());
+    stabilizer.step(dt, input(ideal, {true, true}, {0.5, 0.5}, measured));
     for (Side side : kSides) {
       const int k = index_of(side);
       // The ground answers the modification; the unmodified foot would carry 250 N.
@@ -177,7 +190,7 @@ TEST(Stabilizer, ContactStiffnessAdaptationFindsTheGroundStiffness) {
       const double shift = 100.0 * std::sin(2.0 * M_PI * 2.0 * i * dt);
       ideal[0].force.z() = 250.0 + shift;
       ideal[1].force.z() = 250.0 - shift;
-      stabilizer.step(dt, ideal, {true, true}, {0.5, 0.5}, measured, Eigen::Quaterniond::Identity(), Eigen::Vector3d::Zero());
+      stabilizer.step(dt, input(ideal, {true, true}, {0.5, 0.5}, measured));
       std::array<double, 2> lift;  // each foot's modification as the nominal model's normal force
       for (Side side : kSides) {
         const int k = index_of(side);

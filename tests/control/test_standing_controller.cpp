@@ -47,7 +47,8 @@ TEST(StandingController, NanSensorValueEntersSafeStopAndHoldsAFiniteSetPoint) {
   controller.step(bad, {}, out);
   EXPECT_TRUE(controller.status().fault);
   EXPECT_STREQ(controller.status().state, "safe_stop");
-  EXPECT_STREQ(controller.status().fault_reason, "left F/T sensor");
+  EXPECT_EQ(controller.status().first_fault.signal, FaultSignal::ForceTorque);
+  EXPECT_EQ(controller.status().first_fault.index, index_of(Side::Left));
   EXPECT_TRUE(out.position.allFinite());
   EXPECT_EQ(out.position, before);
   // It stays in the safe stop even when the signal recovers.

@@ -10,7 +10,7 @@
 
 #include "io/robot_config.hpp"
 #include "io/scenario.hpp"
-#include "io/scenario_runner.hpp"
+#include "studies/scenario_runner.hpp"
 #include "test_support.hpp"
 
 namespace biped {

@@ -11,8 +11,8 @@
 #include <limits>
 
 #include "apps/allocation_counter.hpp"
-#include "model/multibody_zmp.hpp"
 #include "kinematic_loop.hpp"
+#include "model/multibody_zmp.hpp"
 #include "test_support.hpp"
 
 namespace biped {

@@ -14,10 +14,10 @@
 
 #include "io/robot_config.hpp"
 #include "io/scenario.hpp"
-#include "io/scenario_runner.hpp"
 #include "io/yaml_reader.hpp"
-#include "test_support.hpp"
 #include "sim/simulation.hpp"
+#include "studies/scenario_runner.hpp"
+#include "test_support.hpp"
 
 namespace fs = std::filesystem;
 

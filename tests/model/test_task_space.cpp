@@ -10,6 +10,8 @@
 #include <random>
 #include <set>
 
+#include "math/rotations.hpp"
+
 namespace biped {
 namespace {
 
@@ -116,7 +118,7 @@ TEST_P(TaskSpaceTest, JacobianMatchesFiniteDifferences) {
     // R_ref up to 1.5 rad away from the upper body, so the rotation-vector rows are tested at
     // large angles too (the inverse left Jacobian is not close to I there).
     evaluate(space, q, Eigen::Matrix3d::Identity(), data);
-    const Eigen::Matrix3d R_ref = data.upper_body_rotation * so3::exp(random_unit_ball(rng, 1.5));
+    const Eigen::Matrix3d R_ref = data.upper_body_rotation * math::so3::exp(random_unit_ball(rng, 1.5));
     evaluate(space, q, R_ref, data);
     for (int k = 0; k < space.nv(); ++k) {
       Eigen::VectorXd direction = Eigen::VectorXd::Zero(space.nv());
@@ -156,40 +158,6 @@ TEST_P(TaskSpaceTest, JacobianHasFullRowRankAtStandPose) {
 
 INSTANTIATE_TEST_SUITE_P(Robots, TaskSpaceTest, ::testing::Values(kLola, kJohnnie),
                          [](const auto& info) { return std::string(info.param.name); });
-
-TEST(So3, LogInvertsExp) {
-  std::mt19937 rng(3);
-  for (int i = 0; i < 100; ++i) {
-    const Eigen::Vector3d phi = random_unit_ball(rng, 3.0);
-    EXPECT_LT((so3::log(Eigen::Quaterniond(so3::exp(phi))) - phi).norm(), 1e-12);
-  }
-  const Eigen::Vector3d tiny(1e-14, -2e-14, 3e-14);
-  EXPECT_LT((so3::log(Eigen::Quaterniond(so3::exp(tiny))) - tiny).norm(), 1e-20);
-  EXPECT_EQ(so3::log(Eigen::Quaterniond::Identity()), Eigen::Vector3d::Zero());
-}
-
-TEST(So3, InverseLeftJacobianIsContinuousAtTheSeriesSwitch) {
-  const Eigen::Vector3d axis = Eigen::Vector3d(1, 2, -2).normalized();
-  const Eigen::Matrix3d below = so3::inverse_left_jacobian((1e-2 - 1e-12) * axis);
-  const Eigen::Matrix3d above = so3::inverse_left_jacobian((1e-2 + 1e-12) * axis);
-  EXPECT_LT((below - above).cwiseAbs().maxCoeff(), 1e-11);
-  EXPECT_LT((so3::inverse_left_jacobian(Eigen::Vector3d::Zero()) - Eigen::Matrix3d::Identity()).norm(), 1e-15);
-}
-
-// φ̇ = J_l⁻¹(φ) ω for R = exp([φ]×), Ṙ = [ω]× R: check against the rotation-vector difference.
-TEST(So3, InverseLeftJacobianMapsSpatialRates) {
-  std::mt19937 rng(5);
-  for (int i = 0; i < 20; ++i) {
-    const Eigen::Vector3d phi = random_unit_ball(rng, 2.5);
-    const Eigen::Vector3d omega = random_unit_ball(rng, 1.0);
-    constexpr double h = 1e-6;
-    const Eigen::Matrix3d R = so3::exp(phi);
-    const Eigen::Vector3d phi_plus = so3::log(Eigen::Quaterniond(so3::exp(h * omega) * R));
-    const Eigen::Vector3d phi_minus = so3::log(Eigen::Quaterniond(so3::exp(-h * omega) * R));
-    const Eigen::Vector3d rate_fd = (phi_plus - phi_minus) / (2.0 * h);
-    EXPECT_LT((so3::inverse_left_jacobian(phi) * omega - rate_fd).norm(), 1e-8);
-  }
-}
 
 }  // namespace
 }  // namespace biped

@@ -5,7 +5,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "control/interface.hpp"
+#include "interface/controller.hpp"
 #include "io/robot_config.hpp"
 #include "io/scenario.hpp"
 #include "io/video_recorder.hpp"

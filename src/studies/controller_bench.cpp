@@ -1,4 +1,4 @@
-#include "io/controller_bench.hpp"
+#include "studies/controller_bench.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -6,8 +6,8 @@
 #include "control/resolved_motion_rate_control_svd.hpp"
 #include "control/walking_controller.hpp"
 #include "io/robot_config.hpp"
-#include "io/scenario_runner.hpp"
 #include "sim/simulation.hpp"
+#include "studies/scenario_runner.hpp"
 
 namespace biped {
 namespace {

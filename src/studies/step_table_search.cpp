@@ -1,14 +1,11 @@
-#include "io/step_tables.hpp"
+#include "studies/step_table_search.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <deque>
-#include <fstream>
 #include <limits>
 #include <ostream>
-#include <sstream>
 
-#include "io/yaml_reader.hpp"
 #include "model/multibody_zmp.hpp"
 #include "sim/closed_loop.hpp"
 
@@ -49,10 +46,10 @@ CandidateResult evaluate_step_candidate(const RobotModel& model, const WalkingCo
   WalkingControllerParams params = base;
   params.stabilizer = false;
   params.sensor_limits.frozen_cycles = 0;  // the kinematic replay below feeds constant F/T and IMU readings
-  params.table = StepTable{};
-  params.limits.vx_max = std::max(params.limits.vx_max, speed);  // judge the speed itself, unsaturated
-  params.step.step_time = step_time;
-  params.step.double_support_ratio = double_support_ratio;
+  params.plan.table = StepTable{};
+  params.plan.limits.vx_max = std::max(params.plan.limits.vx_max, speed);  // judge the speed itself, unsaturated
+  params.plan.step.step_time = step_time;
+  params.plan.step.double_support_ratio = double_support_ratio;
   WalkingController controller(model, params);
   SensorData sensors(model.num_joints());
   sensors.joint_position = model.stand_pose();
@@ -63,8 +60,8 @@ CandidateResult evaluate_step_candidate(const RobotModel& model, const WalkingCo
   RobotData data(model);
   const double dt = params.rmrc.dt;
   const double start = 0.5;
-  const double duration = start + params.start_shift + (steps + 1) * step_time;
-  const double gait_start = start + params.start_shift + settle_steps * step_time;
+  const double duration = start + params.plan.start_shift + (steps + 1) * step_time;
+  const double gait_start = start + params.plan.start_shift + settle_steps * step_time;
   const int com_row = TaskSpace(model).layout().com;
   std::deque<Eigen::VectorXd> history;
   CandidateResult result;
@@ -96,10 +93,10 @@ bool survives_in_simulation(const RobotModel& model, const WalkingControllerPara
                             double double_support_ratio, int steps) {
   WalkingControllerParams params = base;
   params.stabilizer = true;
-  params.table = StepTable{};
-  params.step.step_time = step_time;
-  params.step.double_support_ratio = double_support_ratio;
-  params.limits.vx_max = std::max(params.limits.vx_max, speed);
+  params.plan.table = StepTable{};
+  params.plan.step.step_time = step_time;
+  params.plan.step.double_support_ratio = double_support_ratio;
+  params.plan.limits.vx_max = std::max(params.plan.limits.vx_max, speed);
   WalkingController controller(model, params);
   Simulation sim(sim_params, model);
   TimedCommand start;
@@ -107,7 +104,7 @@ bool survives_in_simulation(const RobotModel& model, const WalkingControllerPara
   start.command.vx = speed;
   start.command.omega = turn_rate;
   RunOptions options;
-  options.duration = start.t + params.start_shift + (steps + 1) * step_time;
+  options.duration = start.t + params.plan.start_shift + (steps + 1) * step_time;
   options.run_on_after_fall = 0.0;
   return !run_closed_loop(sim, controller, {TimedCommand{}, start}, options, nullptr).fell;
 }
@@ -122,12 +119,12 @@ StepTable generate_step_table(const RobotModel& model, const WalkingControllerPa
   for (double speed : speeds) {
     StepTableRow best;
     best.speed = speed;
-    best.clearance = base.step.clearance;
+    best.clearance = base.plan.step.clearance;
     if (speed == 0.0) {
       // A zero command means standing (the FSM stops): no gait to choose. The row keeps the nominal
       // parameters, which the stop step uses, and records the standing margin.
-      best.step_time = base.step.step_time;
-      best.double_support_ratio = base.step.double_support_ratio;
+      best.step_time = base.plan.step.step_time;
+      best.double_support_ratio = base.plan.step.double_support_ratio;
       best.zmp_margin = evaluate_step_candidate(model, base, 0.0, best.step_time, best.double_support_ratio, 1, 0).zmp_margin;
       table.rows.insert(table.rows.begin(), best);
       continue;
@@ -205,50 +202,6 @@ StepTable generate_step_table(const RobotModel& model, const WalkingControllerPa
     faster_step_time = best_feasible ? best.step_time : std::numeric_limits<double>::quiet_NaN();
   }
   return table;
-}
-
-void write_step_table(const StepTable& table, std::ostream& out) {
-  out << "speed,step_time,double_support_ratio,clearance,zmp_margin_m\n";
-  for (const StepTableRow& r : table.rows) {
-    out << r.speed << ',' << r.step_time << ',' << r.double_support_ratio << ',' << r.clearance << ',' << r.zmp_margin
-        << '\n';
-  }
-}
-
-StepTable read_step_table(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw InputError(path + ": cannot open step table");
-  std::string line;
-  std::getline(in, line);
-  if (line != "speed,step_time,double_support_ratio,clearance,zmp_margin_m") {
-    throw InputError(path + ":1: not a step table (expected the header speed,step_time,double_support_ratio,clearance,zmp_margin_m)");
-  }
-  StepTable table;
-  for (int number = 2; std::getline(in, line); ++number) {
-    if (line.empty()) continue;
-    std::stringstream row(line);
-    StepTableRow r;
-    char c1, c2, c3, c4;
-    if (!(row >> r.speed >> c1 >> r.step_time >> c2 >> r.double_support_ratio >> c3 >> r.clearance >> c4 >> r.zmp_margin) ||
-        c1 != ',' || c2 != ',' || c3 != ',' || c4 != ',' || !std::isfinite(r.speed) || !(r.step_time > 0.0) ||
-        !(r.double_support_ratio > 0.0 && r.double_support_ratio < 0.8) || r.clearance < 0.0) {
-      throw InputError(path + ":" + std::to_string(number) + ": malformed step table row '" + line + "'");
-    }
-    if (!table.rows.empty() && r.speed <= table.rows.back().speed) {
-      throw InputError(path + ":" + std::to_string(number) + ": speeds must increase");
-    }
-    table.rows.push_back(r);
-  }
-  if (table.rows.empty()) throw InputError(path + ": the step table has no rows");
-  return table;
-}
-
-double fastest_feasible_speed(const StepTable& table) {
-  double fastest = 0.0;
-  for (const StepTableRow& r : table.rows) {
-    if (r.zmp_margin > 0.0) fastest = std::max(fastest, r.speed);
-  }
-  return fastest;
 }
 
 }  // namespace biped

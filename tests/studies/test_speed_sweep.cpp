@@ -1,6 +1,6 @@
 // The speed sweep: one straight walk per commanded speed; a speed beyond the step table's limit is
 // reported as saturated and not counted as walked.
-#include "io/speed_sweep.hpp"
+#include "studies/speed_sweep.hpp"
 
 #include <gtest/gtest.h>
 
@@ -13,7 +13,7 @@ namespace {
 TEST(SpeedSweep, ReportsEachSpeedAndTheFastestUnsaturatedWalk) {
   const Scenario scenario = load_scenario(test::source_path("config/scenarios/johnnie-walk.yaml"));
   const RunConfig config = make_run_config(scenario);
-  const double limit = config.controller.walking.limits.vx_max;
+  const double limit = config.controller.walking.plan.limits.vx_max;
   SpeedSweepOptions options;
   options.from = 0.3;
   options.step = limit + 0.2 - 0.3;

@@ -1,39 +1,17 @@
 #pragma once
-// What crosses the boundary between the controller and the robot (or the simulator).
-// The controller sees SensorData only, never the simulator's state.
+// The boundary between a controller and the robot it drives (simulated or real): the Controller
+// base, and the status a controller reports about itself each cycle. sim/ and control/ both speak
+// this layer and never include each other.
 #include <Eigen/Core>
-#include <Eigen/Geometry>
 #include <array>
 
+#include "interface/commands.hpp"
+#include "interface/fault.hpp"
+#include "interface/sensor_data.hpp"
+#include "math/side.hpp"
 #include "math/wrench.hpp"
-#include "model/robot_model.hpp"
 
 namespace biped {
-
-struct SensorData {
-  double time = 0.0;                // [s] since the start of the run
-  Eigen::VectorXd joint_position;   // link-side encoders [rad], in RobotModel::joints() order
-  Eigen::Quaterniond imu_orientation = Eigen::Quaterniond::Identity();  // IMU frame in the world
-  Eigen::Vector3d imu_angular_rate = Eigen::Vector3d::Zero();           // [rad/s], IMU frame
-  Eigen::Vector3d imu_acceleration = Eigen::Vector3d::Zero();           // specific force [m/s²], IMU frame
-  std::array<Wrench, 2> foot_wrench;                                    // indexed by Side
-
-  explicit SensorData(int num_joints = 0) : joint_position(Eigen::VectorXd::Zero(num_joints)) {}
-};
-
-// Joint position set-points, in RobotModel::joints() order.
-struct JointCommand {
-  Eigen::VectorXd position;
-  explicit JointCommand(int num_joints = 0) : position(Eigen::VectorXd::Zero(num_joints)) {}
-};
-
-// The "joystick": desired walking velocity in the robot's heading frame.
-struct WalkCommand {
-  double vx = 0.0;     // forward [m/s]
-  double vy = 0.0;     // to the left [m/s]
-  double omega = 0.0;  // turning rate [rad/s]
-  bool stop = false;   // come to a standstill with both feet side by side
-};
 
 // A footstep the current walking pattern is planned through (controller frame).
 struct PlannedStep {
@@ -48,7 +26,7 @@ inline constexpr int kMaxPlannedSteps = 3;
 struct ControllerStatus {
   const char* state = "init";   // FSM state name, e.g. "standing", "walking", "safe_stop"
   bool fault = false;           // a sensor fault was detected; set-points are held safe
-  const char* fault_reason = "";
+  Fault first_fault;            // the first fault detected (what the safe stop answers)
   std::array<Wrench, 2> desired_wrench;  // contact wrench the controller aims for, per foot
   Eigen::Vector3d com_desired = Eigen::Vector3d::Zero();  // planned CoM (controller frame)
   Eigen::Vector2d zmp_desired = Eigen::Vector2d::Zero();  // planned ZMP (controller frame)

@@ -1,4 +1,4 @@
-#include "control/state_estimation.hpp"
+#include "control/com_estimator.hpp"
 
 #include <gtest/gtest.h>
 

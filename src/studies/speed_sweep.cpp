@@ -1,9 +1,9 @@
-#include "io/speed_sweep.hpp"
+#include "studies/speed_sweep.hpp"
 
 #include <cmath>
 
-#include "io/scenario_runner.hpp"
 #include "io/yaml_reader.hpp"
+#include "studies/scenario_runner.hpp"
 
 namespace biped {
 namespace {

@@ -1,5 +1,5 @@
 #pragma once
-// Off-line step tables: generation (`biped tables --robot NAME`) and the CSV file format.
+// Off-line step tables: the search that generates them (`biped tables --robot NAME`).
 //
 // For each commanded forward speed of a grid, every candidate (step time, double-support share) is
 // walked by the walking controller on its own kinematic loop (no simulation: the planned motion
@@ -58,12 +58,5 @@ bool survives_in_simulation(const RobotModel& model, const WalkingControllerPara
 // per speed.
 StepTable generate_step_table(const RobotModel& model, const WalkingControllerParams& base,
                               const StepTableSearch& search, const SimulationParams* sim, std::ostream* progress);
-
-// CSV: header `speed,step_time,double_support_ratio,clearance,zmp_margin_m`, one row per speed.
-void write_step_table(const StepTable& table, std::ostream& out);
-// Throws InputError naming the file and line for a malformed file.
-StepTable read_step_table(const std::string& path);
-// The fastest speed of the table whose choice has a positive ZMP margin (0 if none).
-double fastest_feasible_speed(const StepTable& table);
 
 }  // namespace biped

@@ -1,7 +1,7 @@
 // The push test: the stabilizer (eq. 10 with eq. 20) survives at least twice the push impulse of
 // the open-loop baseline, sideways (both ways) and forward, in LOLA's push scenario (a slow walk that the
 // open loop walks through unpushed, so that both sides of the comparison are measured).
-#include "io/push_test.hpp"
+#include "studies/push_test.hpp"
 
 #include <gtest/gtest.h>
 

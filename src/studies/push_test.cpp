@@ -1,7 +1,7 @@
-#include "io/push_test.hpp"
+#include "studies/push_test.hpp"
 
-#include "io/scenario_runner.hpp"
 #include "io/yaml_reader.hpp"
+#include "studies/scenario_runner.hpp"
 
 namespace biped {
 namespace {

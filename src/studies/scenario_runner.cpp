@@ -1,4 +1,4 @@
-#include "io/scenario_runner.hpp"
+#include "studies/scenario_runner.hpp"
 
 #include <filesystem>
 #include <utility>

@@ -1,0 +1,39 @@
+#pragma once
+// State estimation from sensors only: the robot CoM relative to the stance foot (eq. (10)'s r_CoM),
+// from the joint encoders and the IMU's upper-body orientation (the kinematic chain anchored at the
+// stance foot), and its rate.
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include "interface/sensor_data.hpp"
+#include "model/robot_model.hpp"
+
+namespace biped {
+
+class CoMEstimator {
+ public:
+  explicit CoMEstimator(const RobotModel& model);
+
+  // r_CoM − r_foot in the gravity-aligned frame that has the upper body's heading, from the encoder
+  // angles (RobotModel::joints() order) and the IMU orientation of the upper body. Allocation-free.
+  Eigen::Vector3d com_from_foot(const Eigen::VectorXd& joint_positions, const Eigen::Quaterniond& upper_body,
+                                Side foot);
+
+  // Forgets the last estimate: the next update() starts the rate from zero.
+  void reset() { has_estimate_ = false; }
+  // One cycle: the horizontal CoM relative to `stance` and its rate, differentiated over dt and
+  // filtered (T = 10 ms); a change of stance foot restarts the rate.
+  void update(const SensorData& sensors, Side stance, double dt);
+  const Eigen::Vector2d& estimate() const { return estimate_; }  // [m], heading frame (x forward, y left)
+  const Eigen::Vector2d& rate() const { return rate_; }          // [m/s]
+
+ private:
+  const RobotModel& model_;
+  RobotData data_;
+  Eigen::Vector2d estimate_ = Eigen::Vector2d::Zero();
+  Eigen::Vector2d rate_ = Eigen::Vector2d::Zero();
+  Side stance_ = Side::Left;
+  bool has_estimate_ = false;
+};
+
+}  // namespace biped

@@ -1,0 +1,94 @@
+#include "control/walking_plan.hpp"
+
+#include <cmath>
+
+namespace biped {
+namespace {
+
+PatternGeneratorParams pattern_params(const RobotModel& model, const WalkingPlanParams& params) {
+  PatternGeneratorParams p = simplified_model_of(model);
+  p.arm_swing_gain = params.arm_swing_gain;
+  return p;
+}
+
+}  // namespace
+
+WalkingPlan::WalkingPlan(const RobotModel& model, const WalkingPlanParams& params)
+    : params_(params), step_(params.step), pattern_(pattern_params(model, params)) {}
+
+void WalkingPlan::reset(const std::array<Footstep, 2>& feet, const Eigen::Vector3d& com) {
+  fsm_ = WalkingStateMachine{};
+  feet_ = feet;
+  num_planned_ = 0;
+  planned_vx_ = 0.0;
+  command_saturated_ = false;
+  steps_completed_ = 0;
+  step_ = params_.step;
+  step_.com_height = com.z();
+  step_.step_width = (feet_[0].position - feet_[1].position).norm();
+
+  // Body mass point of the simplified model so that its CoM is the robot's.
+  const PatternGeneratorParams& p = pattern_.params();
+  const double m_total = p.body_mass + 2.0 * p.leg_mass;
+  AxisState bx, by;
+  bx.position = (m_total * com.x() - p.leg_mass * (feet_[0].position.x() + feet_[1].position.x())) / p.body_mass;
+  by.position = (m_total * com.y() - p.leg_mass * (feet_[0].position.y() + feet_[1].position.y())) / p.body_mass;
+  pattern_.replan(0.0, feet_, planned_, 0, step_, bx, by, com.head<2>());
+  pattern_.sample(0.0, sample_);
+}
+
+double WalkingPlan::max_speed_change() const {
+  return params_.limits.vx_rate * params_.table.lookup(planned_vx_, step_).step_time;
+}
+
+const PatternSample& WalkingPlan::advance(double t, const WalkCommand& command) {
+  const VelocityCommand v = saturate({command.vx, command.vy, command.omega}, params_.limits, command_saturated_);
+  const bool commanded = !command.stop && (std::abs(v.vx) + std::abs(v.vy) + std::abs(v.omega) > 1e-3);
+  // Too fast to stop in one step: keep walking and slow down first.
+  const bool wants_to_walk = commanded || std::abs(planned_vx_) > max_speed_change() + 1e-9;
+  const bool at_touchdown = num_planned_ > 0 && t >= pattern_.next_touchdown() - 1e-9;
+  if (at_touchdown) {
+    feet_[index_of(planned_[0].side)] = planned_[0];
+    ++steps_completed_;
+  }
+  replan(t, fsm_.update(wants_to_walk, at_touchdown), commanded ? v : VelocityCommand{});
+  pattern_.sample(t, sample_);
+  return sample_;
+}
+
+void WalkingPlan::replan(double t, StepDecision decision, const VelocityCommand& command) {
+  if (decision == StepDecision::None) return;
+  VelocityCommand v = command;
+  planned_vx_ = decision == StepDecision::StartWalk || decision == StepDecision::Continue
+                    ? ramp_towards(planned_vx_, command.vx, max_speed_change())
+                    : 0.0;
+  v.vx = planned_vx_;
+  PatternSample now;
+  pattern_.sample(t, now);
+  const StepParameters step = params_.table.lookup(decision == StepDecision::StopStep ? 0.0 : v.vx, step_);
+  switch (decision) {
+    case StepDecision::StartWalk: {
+      // Step first with the foot on the side the robot moves or turns to.
+      const Side first_swing = (v.vy > 1e-3 || (std::abs(v.vy) <= 1e-3 && v.omega > 1e-3)) ? Side::Left : Side::Right;
+      plan_steps(feet_[index_of(other(first_swing))], v, step, t + step.step_time + params_.start_shift, 3, planned_);
+      num_planned_ = 3;
+      break;
+    }
+    case StepDecision::Continue:
+      plan_steps(feet_[index_of(planned_[0].side)], v, step, t + step.step_time, 3, planned_);
+      num_planned_ = 3;
+      break;
+    case StepDecision::StopStep:
+      plan_steps(feet_[index_of(planned_[0].side)], VelocityCommand{}, step, t + step.step_time, 1, planned_);
+      num_planned_ = 1;
+      break;
+    case StepDecision::Stand:
+      num_planned_ = 0;
+      break;
+    case StepDecision::None:
+      return;
+  }
+  pattern_.replan(t, feet_, planned_, num_planned_, step, now.body_x, now.body_y, now.zmp);
+}
+
+}  // namespace biped

@@ -1,0 +1,68 @@
+#pragma once
+// The planning half of Fig. 3 inside the controller, advanced once per cycle: the walking state
+// machine decides at touchdowns, the step sequence planner places the next three footsteps with
+// the parameters of the off-line step table, and the walking pattern generator replans through
+// them; every cycle then samples the pattern. It needs no sensors: it is what the robot would do on
+// the ground the plan assumes.
+#include <array>
+
+#include "control/walking_state_machine.hpp"
+#include "interface/commands.hpp"
+#include "model/robot_model.hpp"
+#include "planning/footstep.hpp"
+#include "planning/step_sequence_planner.hpp"
+#include "planning/step_table.hpp"
+#include "planning/walking_pattern_generator.hpp"
+
+namespace biped {
+
+struct WalkingPlanParams {
+  StepParameters step;            // step time, double support, clearance (width, com_height: measured at reset)
+  StepTable table;                // off-line table: step time, double support, clearance by speed (empty: `step`)
+  CommandLimits limits;           // feasible commands; beyond them the command is saturated
+  double start_shift = 0.6;       // [s] extra double support before the first step from standing
+  double arm_swing_gain = 0.1;    // arm CoM forward offset per metre of foot separation
+};
+
+class WalkingPlan {
+ public:
+  static constexpr int kMaxSteps = WalkingPatternGenerator::kMaxSteps;
+
+  WalkingPlan(const RobotModel& model, const WalkingPlanParams& params);
+
+  // Standing on `feet` (by Side; controller frame, t = 0) with the robot's CoM at `com`.
+  void reset(const std::array<Footstep, 2>& feet, const Eigen::Vector3d& com);
+  // One cycle at time t since the reset: the command is saturated to the limits, a touchdown makes
+  // the landed step the new foothold and lets the FSM decide, and the pattern is sampled at t.
+  const PatternSample& advance(double t, const WalkCommand& command);
+  // A sensor fault: finish the step under way, put the feet side by side, stand.
+  void enter_safe_stop() { fsm_.enter_safe_stop(); }
+
+  WalkingState state() const { return fsm_.state(); }
+  const PatternSample& sample() const { return sample_; }
+  bool command_saturated() const { return command_saturated_; }  // in the last advance()
+  int steps_completed() const { return steps_completed_; }
+  int num_planned_steps() const { return num_planned_; }
+  const Footstep& planned_step(int i) const { return planned_[i]; }
+  const WalkingPatternGenerator& pattern_generator() const { return pattern_; }
+  // The largest change of the gait's forward speed in one step (limits.vx_rate × step time).
+  double max_speed_change() const;
+
+ private:
+  // Plans with the command's vx ramped from planned_vx_ (StartWalk, Continue).
+  void replan(double t, StepDecision decision, const VelocityCommand& command);
+
+  WalkingPlanParams params_;
+  StepParameters step_;                       // params_.step with the measured width and CoM height
+  WalkingPatternGenerator pattern_;
+  WalkingStateMachine fsm_;
+  std::array<Footstep, 2> feet_;              // current footholds (by Side)
+  std::array<Footstep, kMaxSteps> planned_;   // steps of the current plan
+  int num_planned_ = 0;
+  double planned_vx_ = 0.0;                   // forward speed of the current plan (ramped, limits.vx_rate)
+  PatternSample sample_;
+  bool command_saturated_ = false;
+  int steps_completed_ = 0;
+};
+
+}  // namespace biped

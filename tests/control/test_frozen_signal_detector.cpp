@@ -1,0 +1,55 @@
+#include "control/frozen_signal_detector.hpp"
+
+#include <gtest/gtest.h>
+
+namespace biped {
+namespace {
+
+SensorData live_reading() {
+  SensorData s(0);
+  s.imu_acceleration = Eigen::Vector3d(0, 0, 9.81);
+  return s;
+}
+
+// A frozen F/T channel is reported after `frozen_cycles` identical readings, not before; a reading
+// that changes, however little, restarts the count.
+TEST(FrozenSignalDetector, FrozenSignalIsReportedAfterTheConfiguredNumberOfRepeats) {
+  FrozenSignalDetector detector;
+  SensorData s = live_reading();
+  s.foot_wrench[0].force.z() = 300.0;
+  detector.reset(s);
+  for (int i = 1; i <= 20; ++i) {
+    s.foot_wrench[1].force.z() = 300.0 + 1e-9 * i;  // the right sensor and the IMU stay alive
+    s.imu_angular_rate.x() = 1e-9 * i;
+    const Fault fault = detector.update(s, 5);
+    if (i < 5) {
+      EXPECT_FALSE(fault) << i;
+    } else {
+      EXPECT_EQ(fault.signal, FaultSignal::ForceTorque) << i;
+      EXPECT_EQ(fault.check, FaultCheck::Frozen) << i;
+      EXPECT_EQ(fault.index, index_of(Side::Left)) << i;
+      EXPECT_STREQ(describe(fault), "left F/T sensor frozen") << i;
+    }
+  }
+  s.foot_wrench[0].force.z() += 1e-9;
+  EXPECT_FALSE(detector.update(s, 5)) << "a changing reading restarts the count";
+  for (int i = 0; i < 10; ++i) EXPECT_FALSE(detector.update(s, 0)) << "0 switches the check off";
+}
+
+TEST(FrozenSignalDetector, FrozenImuIsReported) {
+  FrozenSignalDetector detector;
+  SensorData s = live_reading();
+  detector.reset(s);
+  Fault fault;
+  for (int i = 1; i <= 3 && !fault; ++i) {
+    s.foot_wrench[0].force.z() = i;
+    s.foot_wrench[1].force.z() = i;
+    fault = detector.update(s, 3);
+  }
+  EXPECT_EQ(fault.signal, FaultSignal::Imu);
+  EXPECT_EQ(fault.check, FaultCheck::Frozen);
+  EXPECT_STREQ(describe(fault), "imu frozen");
+}
+
+}  // namespace
+}  // namespace biped
