@@ -99,11 +99,14 @@ void integrate_joint_rates(const RobotModel& model, const Eigen::VectorXd& qdot,
   }
 }
 
-ResolvedMotionRateControl::ResolvedMotionRateControl(const RobotModel& model, const TaskSpace& space,
-                                                     const ResolvedMotionRateControlParams& params)
+ResolvedMotionRateControlBase::ResolvedMotionRateControlBase(const RobotModel& model, const TaskSpace& space,
+                                                             const ResolvedMotionRateControlParams& params)
     : model_(model),
       space_(space),
       params_(params),
+      xdot_d_(Eigen::VectorXd::Zero(space.dim())),
+      gradient_(Eigen::VectorXd::Zero(space.nv())),
+      qdot_d_(Eigen::VectorXd::Zero(space.nv())),
       objective_(model, params.objective),
       task_(space),
       gain_over_dt_(task_gains_over_dt(params, space.dim())),
@@ -111,26 +114,18 @@ ResolvedMotionRateControl::ResolvedMotionRateControl(const RobotModel& model, co
       zero_task_(Eigen::VectorXd::Zero(space.dim())),
       qpos_d_(model.stand_qpos()),
       joint_positions_(Eigen::VectorXd::Zero(model.num_joints())),
-      xdot_d_(Eigen::VectorXd::Zero(space.dim())),
-      gradient_(Eigen::VectorXd::Zero(space.nv())),
-      qdot_d_(Eigen::VectorXd::Zero(space.nv())),
       J_locked_(Eigen::MatrixXd::Zero(space.dim(), space.nv())),
-      locked_(Eigen::ArrayXi::Zero(model.num_joints())),
-      A_(Eigen::MatrixXd::Zero(space.dim(), space.dim())),
-      llt_(space.dim()),
-      rhs_(Eigen::VectorXd::Zero(space.dim())),
-      inverse_iterate_(Eigen::VectorXd::Zero(space.dim())) {
+      locked_(Eigen::ArrayXi::Zero(model.num_joints())) {
   if (!(params.damping.singular_value_threshold > 0.0) || !(params.damping.max_damping >= 0.0) ||
       params.damping.inverse_iterations < 1) {
     throw std::invalid_argument("resolved motion rate control: damping needs threshold > 0, max >= 0, iterations >= 1");
   }
-  reset(model.stand_qpos());
 }
 
-void ResolvedMotionRateControl::reset(const Eigen::VectorXd& qpos) {
+void ResolvedMotionRateControlBase::reset(const Eigen::VectorXd& qpos) {
   qpos_d_ = qpos;
   for (int i = 0; i < model_.num_joints(); ++i) joint_positions_[i] = qpos_d_[model_.joints()[i].qpos_adr];
-  inverse_iterate_.setConstant(1.0 / std::sqrt(static_cast<double>(space_.dim())));
+  reset_solver();
   qdot_d_.setZero();
   locked_.setZero();
   damping_squared_ = 0.0;
@@ -139,14 +134,14 @@ void ResolvedMotionRateControl::reset(const Eigen::VectorXd& qpos) {
   evaluate(space_, qpos_d_, Eigen::Matrix3d::Identity(), task_);  // task() is valid before the first step
 }
 
-const Eigen::VectorXd& ResolvedMotionRateControl::step(const Eigen::VectorXd& x_id, const Eigen::VectorXd& xdot_id,
-                                                       const Eigen::Matrix3d& R_ref) {
+const Eigen::VectorXd& ResolvedMotionRateControlBase::step(const Eigen::VectorXd& x_id, const Eigen::VectorXd& xdot_id,
+                                                           const Eigen::Matrix3d& R_ref) {
   return step(x_id, xdot_id, R_ref, zero_task_, zero_task_);
 }
 
-const Eigen::VectorXd& ResolvedMotionRateControl::step(const Eigen::VectorXd& x_id, const Eigen::VectorXd& xdot_id,
-                                                       const Eigen::Matrix3d& R_ref, const Eigen::VectorXd& delta_x,
-                                                       const Eigen::VectorXd& delta_xdot) {
+const Eigen::VectorXd& ResolvedMotionRateControlBase::step(const Eigen::VectorXd& x_id, const Eigen::VectorXd& xdot_id,
+                                                           const Eigen::Matrix3d& R_ref, const Eigen::VectorXd& delta_x,
+                                                           const Eigen::VectorXd& delta_xdot) {
   resolve_rates(x_id, xdot_id, R_ref, delta_x, delta_xdot);
 
   // Non-finite rates (NaN/inf in x_id, R_ref, ...) must not reach the set-points: hold q_d.
@@ -158,9 +153,9 @@ const Eigen::VectorXd& ResolvedMotionRateControl::step(const Eigen::VectorXd& x_
   return qpos_d_;
 }
 
-void ResolvedMotionRateControl::resolve_rates(const Eigen::VectorXd& x_id, const Eigen::VectorXd& xdot_id,
-                                              const Eigen::Matrix3d& R_ref, const Eigen::VectorXd& delta_x,
-                                              const Eigen::VectorXd& delta_xdot) {
+void ResolvedMotionRateControlBase::resolve_rates(const Eigen::VectorXd& x_id, const Eigen::VectorXd& xdot_id,
+                                                  const Eigen::Matrix3d& R_ref, const Eigen::VectorXd& delta_x,
+                                                  const Eigen::VectorXd& delta_xdot) {
   evaluate(space_, qpos_d_, R_ref, task_);
   desired_task_velocity(x_id, xdot_id, task_.x, delta_x, delta_xdot, gain_over_dt_, xdot_d_);
   objective_.gradient(qpos_d_, gradient_);
@@ -175,6 +170,20 @@ void ResolvedMotionRateControl::resolve_rates(const Eigen::VectorXd& x_id, const
     remove_locked_joints(model_, locked_, J_locked_, gradient_);
     compute_joint_rates(J_locked_);
   }
+}
+
+ResolvedMotionRateControl::ResolvedMotionRateControl(const RobotModel& model, const TaskSpace& space,
+                                                     const ResolvedMotionRateControlParams& params)
+    : ResolvedMotionRateControlBase(model, space, params),
+      A_(Eigen::MatrixXd::Zero(space.dim(), space.dim())),
+      llt_(space.dim()),
+      rhs_(Eigen::VectorXd::Zero(space.dim())),
+      inverse_iterate_(Eigen::VectorXd::Zero(space.dim())) {
+  reset(model.stand_qpos());
+}
+
+void ResolvedMotionRateControl::reset_solver() {
+  inverse_iterate_.setConstant(1.0 / std::sqrt(static_cast<double>(space_.dim())));
 }
 
 // eq. (21), third line, Klein & Huang form: q̇_d = Jᵀ A⁻¹ (ẋ_d + α_N J ∇H) − α_N ∇H, A = J Jᵀ + λ² I.

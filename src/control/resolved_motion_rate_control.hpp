@@ -5,8 +5,7 @@
 //   q_d = ∫ q̇_d dt
 // computed in Klein & Huang's form without forming J^† or N: with A = J Jᵀ (+ λ² I),
 //   q̇_d = Jᵀ A⁻¹ (ẋ_d + α_N J ∇H) − α_N ∇H,
-// one Cholesky factorization per cycle. The RMRC integrates its own q_d (floating base included)
-// and evaluates x and J there: it is a kinematic loop, not fed by measurements.
+// one Cholesky factorization per cycle.
 // Δẋ and Δx (default zero) are the stabilizer's S̄ᵀΔẋ_λ and S̄ᵀΔx_λ, with Δx = ∫Δẋ dt kept by the caller.
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
@@ -69,15 +68,18 @@ double limit_joint_rates(const RobotModel& model, const Eigen::VectorXd& velocit
 void integrate_joint_rates(const RobotModel& model, const Eigen::VectorXd& qdot, double dt,
                            Eigen::VectorXd& qpos);
 
-class ResolvedMotionRateControl {
+// What both implementations of eq. (21) share: the parameters, the null-space objective, the task
+// workspace, the integrated q_d, and the cycle around the solve (x and J at q_d, ẋ_d, ∇H, the
+// solve with joints at their limits locked, the output limits, the integration). Only the solve of
+// the third line differs: Klein & Huang's (ResolvedMotionRateControl) or explicit SVD
+// (ResolvedMotionRateControlSvd). The RMRC integrates its own q_d (floating base included) and
+// evaluates x and J there: it is a kinematic loop, not fed by measurements.
+class ResolvedMotionRateControlBase {
  public:
-  // Throws std::invalid_argument on parameters of the wrong size or non-positive Δt / limits.
-  // `model` and `space` must outlive the object.
-  ResolvedMotionRateControl(const RobotModel& model, const TaskSpace& space,
-                            const ResolvedMotionRateControlParams& params);
+  virtual ~ResolvedMotionRateControlBase() = default;
 
-  // Sets q_d (full qpos, size nq), evaluates x and J there (R_ref = identity) and forgets the warm
-  // start of the σ_min estimate.
+  // Sets q_d (full qpos, size nq), evaluates x and J there (R_ref = identity) and forgets the
+  // solver's warm start.
   void reset(const Eigen::VectorXd& qpos);
 
   // One cycle: x, J at q_d, eq. (21), integration. Returns the new q_d. Allocation-free; never
@@ -101,7 +103,7 @@ class ResolvedMotionRateControl {
   const Eigen::VectorXd& qdot_d() const { return qdot_d_; }        // after the velocity limit
   const Eigen::VectorXd& objective_gradient() const { return gradient_; }
   double damping_squared() const { return damping_squared_; }      // λ² used (0: exact J^†)
-  double smallest_singular_value() const { return sigma_min_; }    // estimate of σ_min(J)
+  double smallest_singular_value() const { return sigma_min_; }    // σ_min(J): estimate or exact
   double velocity_scale() const { return velocity_scale_; }        // 1: no joint at its limit
   int locked_joints() const { return locked_.sum(); }              // held at a software limit
   bool fault() const { return fault_; }
@@ -109,41 +111,64 @@ class ResolvedMotionRateControl {
   const ResolvedMotionRateControlParams& params() const { return params_; }
   const NullSpaceObjective& objective() const { return objective_; }
 
- private:
-  // x, J at q_d, ẋ_d, ∇H, then eq. (21) with joints at their limits locked; fills qdot_d_.
-  void resolve_rates(const Eigen::VectorXd& x_id, const Eigen::VectorXd& xdot_id, const Eigen::Matrix3d& R_ref,
-                     const Eigen::VectorXd& delta_x, const Eigen::VectorXd& delta_xdot);
-  // eq. (21), third line, Klein & Huang form, for the Jacobian J.
-  void compute_joint_rates(const Eigen::MatrixXd& J);
-  // Upper estimate of σ_min(J)² from the Cholesky factor of J Jᵀ: the smallest pivot and a few
-  // warm-started inverse-iteration steps (both bound λ_min(J Jᵀ) from above; their minimum is used).
-  double estimate_smallest_eigenvalue();
+ protected:
+  // Throws std::invalid_argument on parameters of the wrong size or non-positive Δt / limits.
+  // `model` and `space` must outlive the object. The derived constructor calls reset().
+  ResolvedMotionRateControlBase(const RobotModel& model, const TaskSpace& space,
+                                const ResolvedMotionRateControlParams& params);
+
+  // eq. (21), third line, for the Jacobian J (columns of locked joints zeroed): q̇_d into qdot_d_
+  // from xdot_d_ and gradient_, with damping_squared_ and sigma_min_ set. Non-finite rates mean
+  // the solve failed.
+  virtual void compute_joint_rates(const Eigen::MatrixXd& J) = 0;
+  virtual void reset_solver() {}
 
   const RobotModel& model_;
   const TaskSpace& space_;
   ResolvedMotionRateControlParams params_;
+  Eigen::VectorXd xdot_d_;
+  Eigen::VectorXd gradient_;
+  Eigen::VectorXd qdot_d_;
+  double damping_squared_ = 0.0;
+  double sigma_min_ = 0.0;
+
+ private:
+  // x, J at q_d, ẋ_d, ∇H, then eq. (21) with joints at their limits locked; fills qdot_d_.
+  void resolve_rates(const Eigen::VectorXd& x_id, const Eigen::VectorXd& xdot_id, const Eigen::Matrix3d& R_ref,
+                     const Eigen::VectorXd& delta_x, const Eigen::VectorXd& delta_xdot);
+
   NullSpaceObjective objective_;
   TaskSpaceData task_;
-
   Eigen::VectorXd gain_over_dt_;      // K_x/Δt per row
   Eigen::VectorXd velocity_limits_;   // per joint
   Eigen::VectorXd zero_task_;         // default Δx, Δẋ
   Eigen::VectorXd qpos_d_;
   Eigen::VectorXd joint_positions_;
-  Eigen::VectorXd xdot_d_;
-  Eigen::VectorXd gradient_;
-  Eigen::VectorXd qdot_d_;
   Eigen::MatrixXd J_locked_;          // J with the columns of locked joints zeroed
   Eigen::ArrayXi locked_;             // per joint: 1 = held at a software limit this cycle
+  double velocity_scale_ = 1.0;
+  bool fault_ = false;
+};
+
+// eq. (21) in Klein & Huang's form: one Cholesky factorization of A = J Jᵀ (+ λ² I) per cycle,
+// never forming J^† or N. The one used in the control loop.
+class ResolvedMotionRateControl final : public ResolvedMotionRateControlBase {
+ public:
+  ResolvedMotionRateControl(const RobotModel& model, const TaskSpace& space,
+                            const ResolvedMotionRateControlParams& params);
+
+ private:
+  // eq. (21), third line: q̇_d = Jᵀ A⁻¹ (ẋ_d + α_N J ∇H) − α_N ∇H, A = J Jᵀ + λ² I.
+  void compute_joint_rates(const Eigen::MatrixXd& J) override;
+  void reset_solver() override;
+  // Upper estimate of σ_min(J)² from the Cholesky factor of J Jᵀ: the smallest pivot and a few
+  // warm-started inverse-iteration steps (both bound λ_min(J Jᵀ) from above; their minimum is used).
+  double estimate_smallest_eigenvalue();
+
   Eigen::MatrixXd A_;                 // J Jᵀ (+ λ² I), lower triangle
   Eigen::LLT<Eigen::MatrixXd, Eigen::Lower> llt_;
   Eigen::VectorXd rhs_;
   Eigen::VectorXd inverse_iterate_;   // warm start of the σ_min estimate
-
-  double damping_squared_ = 0.0;
-  double sigma_min_ = 0.0;
-  double velocity_scale_ = 1.0;
-  bool fault_ = false;
 };
 
 }  // namespace biped
