@@ -1,24 +1,24 @@
 #include "control/com_estimator.hpp"
 
 #include "math/rotations.hpp"
-#include "model/kinematics.hpp"
 
 namespace biped {
 
-CoMEstimator::CoMEstimator(const RobotModel& model) : model_(model), data_(model) {}
+CoMEstimator::CoMEstimator(const RobotModel& model)
+    : model_(model), qpos_(model.stand_qpos()), frames_(model.tree()) {}
 
 Eigen::Vector3d CoMEstimator::com_from_foot(const Eigen::VectorXd& joint_positions,
                                             const Eigen::Quaterniond& upper_body, Side foot) {
   // Kinematics with the base at the origin, unrotated; the measured upper-body orientation then
   // fixes the rotation of the whole chain.
-  Eigen::Map<Eigen::VectorXd> qpos = data_.qpos();
-  for (int i = 0; i < 7; ++i) qpos[i] = i == 3 ? 1.0 : 0.0;
-  for (int i = 0; i < model_.num_joints(); ++i) qpos[model_.joints()[i].qpos_adr] = joint_positions[i];
-  forward_kinematics_with_com(model_, data_);
-  const Eigen::Matrix3d body_in_base = data_.body_rotation(model_.upper_body());
+  for (int i = 0; i < 7; ++i) qpos_[i] = i == 3 ? 1.0 : 0.0;
+  for (int i = 0; i < model_.num_joints(); ++i) qpos_[model_.joints()[i].qpos_adr] = joint_positions[i];
+  forward_kinematics(model_.tree(), qpos_, frames_);
+  subtree_coms(model_.tree(), frames_);
+  const Eigen::Matrix3d& body_in_base = frames_.rotation[model_.upper_body()];
   const Eigen::Matrix3d base = upper_body.toRotationMatrix() * body_in_base.transpose();
-  const Eigen::Vector3d com = data_.subtree_com(model_.pelvis_body());
-  const Eigen::Vector3d ankle = data_.body_position(model_.foot(foot).body);
+  const Eigen::Vector3d& com = frames_.subtree_com[model_.pelvis_body()];
+  const Eigen::Vector3d& ankle = frames_.position[model_.foot(foot).body];
   const Eigen::Vector3d in_world = base * (com - ankle);
   const double heading = math::heading_of(upper_body.toRotationMatrix());
   return Eigen::AngleAxisd(-heading, Eigen::Vector3d::UnitZ()) * in_world;

@@ -29,7 +29,8 @@ class CoMEstimator {
 
  private:
   const RobotModel& model_;
-  RobotData data_;
+  Eigen::VectorXd qpos_;  // the encoders' configuration with the base at the origin
+  BodyFrames frames_;
   Eigen::Vector2d estimate_ = Eigen::Vector2d::Zero();
   Eigen::Vector2d rate_ = Eigen::Vector2d::Zero();
   Side stance_ = Side::Left;

@@ -41,7 +41,7 @@ void TaskReference::reset(const TaskSpaceData& start, double heading) {
     arm_offset_[k] = yaw_rotation(-heading) * (arm - body);
     // The arm swings as a rigid body about its shoulder's pitch axis (the upper body's y axis
     // through the shoulder): the pivot relative to the upper body, in the heading frame.
-    arm_pivot_[k] = yaw_rotation(-heading) * (start.robot_data().joint_anchor(model.arm_root_joint(side)) - body);
+    arm_pivot_[k] = yaw_rotation(-heading) * (start.frames().joint_anchor[model.arm_root_joint(side)] - body);
   }
 }
 

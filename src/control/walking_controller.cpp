@@ -55,7 +55,7 @@ void WalkingController::reset(const SensorData& first) {
     const int k = index_of(side);
     feet[k].side = side;
     feet[k].position = data.foot_position[k].head<2>();
-    feet[k].yaw = math::heading_of(data.robot_data().body_rotation(space_.foot_body(side)));
+    feet[k].yaw = math::heading_of(data.frames().rotation[space_.foot_body(side)]);
     feet[k].touchdown = 0.0;
   }
   plan_.reset(feet, data.com);

@@ -195,6 +195,7 @@ RobotModel RobotModel::adopt(mjModel* compiled, const std::string& mjcf_path, do
   }
 
   for (int b = 1; b < m->nbody; ++b) model.total_mass_ += m->body_mass[b];
+  model.tree_ = make_body_tree(m, mjcf_path.c_str());
 
   const int key = require_id(m, mjOBJ_KEY, "stand", mjcf_path, "keyframe");
   model.stand_qpos_ = Eigen::Map<const Eigen::VectorXd>(m->key_qpos + key * m->nq, m->nq);

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "math/side.hpp"
+#include "model/body_tree.hpp"
 
 namespace biped {
 
@@ -81,6 +82,8 @@ class RobotModel {
   int nq() const { return model_->nq; }  // size of a full configuration (floating base included)
   int nv() const { return model_->nv; }  // generalized velocities
   double gravity() const;                // [m/s²], magnitude
+  // The kinematic tree for the controller's own forward kinematics (model/body_tree.hpp).
+  const BodyTree& tree() const { return tree_; }
 
   int num_joints() const { return static_cast<int>(joints_.size()); }
   const std::vector<JointInfo>& joints() const { return joints_; }
@@ -113,6 +116,7 @@ class RobotModel {
   std::string name_;
   std::vector<JointInfo> joints_;
   std::array<FootInfo, 2> feet_;
+  BodyTree tree_;
   std::array<int, 2> leg_root_joint_{-1, -1};
   std::array<int, 2> arm_root_joint_{-1, -1};
   int pelvis_body_ = -1;

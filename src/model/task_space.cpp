@@ -29,7 +29,6 @@ void add_rows(std::vector<std::string>& names, const std::string& prefix, int co
   for (int i = 0; i < count; ++i) names.push_back(prefix + suffixes[i]);
 }
 
-Eigen::Quaterniond body_quat(const mjData* d, int body) { return math::quat_from_mujoco(d->xquat + 4 * body); }
 
 }  // namespace
 
@@ -86,10 +85,8 @@ TaskSpace::TaskSpace(const RobotModel& model) : model_(&model) {
 TaskSpaceData::TaskSpaceData(const TaskSpace& space)
     : x(Eigen::VectorXd::Zero(space.dim())),
       J(Eigen::MatrixXd::Zero(space.dim(), space.nv())),
-      robot_data_(space.model()),
+      frames_(space.model().tree()),
       jac_com_(3, space.nv()),
-      jac_pos_(3, space.nv()),
-      jac_rot_(3, space.nv()),
       jac_upper_body_rot_(3, space.nv()),
       jac_tmp_(3, space.nv()) {
   foot_position[0].setZero();
@@ -98,50 +95,50 @@ TaskSpaceData::TaskSpaceData(const TaskSpace& space)
 
 void evaluate(const TaskSpace& space, const Eigen::VectorXd& qpos, const Eigen::Matrix3d& R_ref,
               TaskSpaceData& data) {
-  const mjModel* m = space.model().mj();
-  mjData* d = data.robot_data_.mj();
+  const BodyTree& tree = space.model().tree();
+  BodyFrames& f = data.frames_;
   const TaskLayout& layout = space.layout();
   Eigen::VectorXd& x = data.x;
   Eigen::MatrixXd& J = data.J;
 
-  Eigen::Map<Eigen::VectorXd>(d->qpos, m->nq) = qpos;
-  mj_kinematics(m, d);
-  mj_comPos(m, d);  // subtree CoMs and the motion subspaces that mj_jac* need
+  forward_kinematics(tree, qpos, f);
+  subtree_coms(tree, f);
 
   const int root = space.root_body();
-  data.com = Eigen::Map<const Eigen::Vector3d>(d->subtree_com + 3 * root);
-  mj_jacSubtreeCom(m, d, data.jac_com_.data(), root);
+  data.com = f.subtree_com[root];
+  subtree_com_jacobian(tree, f, root, data.jac_com_);
 
   const int ub = space.upper_body();
-  const Eigen::Quaterniond q_ub = body_quat(d, ub);
-  data.upper_body_rotation = q_ub.toRotationMatrix();
-  data.upper_body_position = Eigen::Vector3d(d->xpos + 3 * space.upper_body());
-  mj_jacBody(m, d, nullptr, data.jac_upper_body_rot_.data(), ub);
+  const Eigen::Quaterniond& q_ub = f.orientation[ub];
+  data.upper_body_rotation = f.rotation[ub];
+  data.upper_body_position = f.position[ub];
+  angular_jacobian(tree, f, ub, data.jac_upper_body_rot_);
 
   for (Side side : kSides) {
     const int s = index_of(side);
     const int body = space.foot_body(side);
-    data.foot_position[s] = Eigen::Map<const Eigen::Vector3d>(d->xpos + 3 * body);
-    mj_jacBody(m, d, data.jac_pos_.data(), data.jac_rot_.data(), body);
+    data.foot_position[s] = f.position[body];
 
     const int p = layout.foot_position[s];
     x.segment<3>(p) = data.foot_position[s] - data.com;
-    J.middleRows<3>(p) = data.jac_pos_ - data.jac_com_;
+    point_jacobian(tree, f, body, f.position[body], J.middleRows<3>(p));
+    J.middleRows<3>(p) -= data.jac_com_;
 
     // φ = log(R_UBᵀ R_foot); its rate is J_l⁻¹(φ) R_UBᵀ (ω_foot − ω_UB).
     const int o = layout.foot_orientation[s];
-    const Eigen::Vector3d phi = math::so3::log(q_ub.conjugate() * body_quat(d, body));
+    const Eigen::Vector3d phi = math::so3::log(q_ub.conjugate() * f.orientation[body]);
     x.segment<3>(o) = phi;
     const Eigen::Matrix3d map = math::so3::inverse_left_jacobian(phi) * data.upper_body_rotation.transpose();
-    data.jac_tmp_ = data.jac_rot_ - data.jac_upper_body_rot_;
+    angular_jacobian(tree, f, body, data.jac_tmp_);
+    data.jac_tmp_ -= data.jac_upper_body_rot_;
     J.middleRows<3>(o).noalias() = map * data.jac_tmp_;
 
     const int a = layout.arm_com[s];
     const int n = layout.arm_com_rows;
     const int arm = space.arm_body(side);
-    mj_jacSubtreeCom(m, d, data.jac_pos_.data(), arm);
-    x.segment(a, n) = (Eigen::Map<const Eigen::Vector3d>(d->subtree_com + 3 * arm) - data.com).head(n);
-    J.middleRows(a, n) = (data.jac_pos_ - data.jac_com_).topRows(n);
+    subtree_com_jacobian(tree, f, arm, data.jac_tmp_);
+    x.segment(a, n) = (f.subtree_com[arm] - data.com).head(n);
+    J.middleRows(a, n) = (data.jac_tmp_ - data.jac_com_).topRows(n);
   }
 
   // φ_UB = log(R_refᵀ R_UB); its rate is J_l⁻¹(φ_UB) R_refᵀ ω_UB.

@@ -70,15 +70,14 @@ class TaskSpaceData {
   Eigen::Matrix3d upper_body_rotation = Eigen::Matrix3d::Identity();
   Eigen::Vector3d upper_body_position = Eigen::Vector3d::Zero();  // body origin, world frame
 
-  // The MuJoCo frames of the last evaluate() (its forward kinematics with CoMs).
-  RobotData& robot_data() { return robot_data_; }
-  const RobotData& robot_data() const { return robot_data_; }
+  // Every body's and joint's frame at the last evaluate()'s configuration, subtree CoMs included.
+  const BodyFrames& frames() const { return frames_; }
 
  private:
   friend void evaluate(const TaskSpace&, const Eigen::VectorXd&, const Eigen::Matrix3d&, TaskSpaceData&);
-  using Jacobian3 = Eigen::Matrix<double, 3, Eigen::Dynamic, Eigen::RowMajor>;  // MuJoCo's layout
-  RobotData robot_data_;
-  Jacobian3 jac_com_, jac_pos_, jac_rot_, jac_upper_body_rot_, jac_tmp_;
+  using Jacobian3 = Eigen::Matrix<double, 3, Eigen::Dynamic>;
+  BodyFrames frames_;
+  Jacobian3 jac_com_, jac_upper_body_rot_, jac_tmp_;
 };
 
 // x(q) and J(q) at the full configuration qpos (size nq). R_ref is the reference frame of the

@@ -11,6 +11,7 @@
 #include <set>
 
 #include "math/rotations.hpp"
+#include "model/kinematics.hpp"
 
 namespace biped {
 namespace {
@@ -85,11 +86,14 @@ TEST_P(TaskSpaceTest, LayoutIsDetectedFromTheModel) {
 TEST_P(TaskSpaceTest, StandPoseValuesMatchTheirDefinitions) {
   evaluate(space, model.stand_qpos(), Eigen::Matrix3d::Identity(), data);
   const TaskLayout& layout = space.layout();
-  const mjData* d = data.robot_data().mj();
+  // MuJoCo's own kinematics, for the foot positions.
+  RobotData mujoco(model);
+  mujoco.qpos() = model.stand_qpos();
+  forward_kinematics(model, mujoco);
   // The stand pose has level feet and an upright upper body: all orientations are zero.
   for (Side s : kSides) {
     EXPECT_LT(data.x.segment<3>(layout.foot_orientation[index_of(s)]).norm(), 1e-9);
-    const Eigen::Vector3d foot(d->xpos + 3 * space.foot_body(s));
+    const Eigen::Vector3d foot = mujoco.body_position(space.foot_body(s));
     EXPECT_LT((data.x.segment<3>(layout.foot_position[index_of(s)]) - (foot - data.com)).norm(), 1e-12);
     EXPECT_LT((com_from_foot(space, data, s) - (data.com - foot)).norm(), 1e-12);
   }
@@ -133,6 +137,52 @@ TEST_P(TaskSpaceTest, JacobianMatchesFiniteDifferences) {
     }
     const double error = (data.J - J_fd).cwiseAbs().maxCoeff() / data.J.cwiseAbs().maxCoeff();
     EXPECT_LT(error, 1e-6) << GetParam().name << " trial " << trial;
+  }
+}
+
+// The task coordinates and J as they were computed with MuJoCo's own kinematics (mj_kinematics,
+// mj_comPos, mj_jac*) before the controller got its own (model/body_tree): the same to round-off.
+TEST_P(TaskSpaceTest, AgreesWithMujocosKinematicsToRoundOff) {
+  const mjModel* m = model.mj();
+  RobotData mujoco(model);
+  mjData* d = mujoco.mj();
+  using Jacobian3 = Eigen::Matrix<double, 3, Eigen::Dynamic, Eigen::RowMajor>;
+  Jacobian3 jac_com(3, m->nv), jac_pos(3, m->nv), jac_rot(3, m->nv), jac_ub(3, m->nv);
+  Eigen::VectorXd x(space.dim());
+  Eigen::MatrixXd J(space.dim(), space.nv());
+  const TaskLayout& L = space.layout();
+  std::mt19937 rng(17);
+  for (int trial = 0; trial < 10; ++trial) {
+    const Eigen::VectorXd q = random_configuration(model, rng);
+    const Eigen::Matrix3d R_ref = math::so3::exp(random_unit_ball(rng, 1.0));
+    evaluate(space, q, R_ref, data);
+    mujoco.qpos() = q;
+    mj_kinematics(m, d);
+    mj_comPos(m, d);
+    const Eigen::Vector3d com(d->subtree_com + 3 * space.root_body());
+    mj_jacSubtreeCom(m, d, jac_com.data(), space.root_body());
+    const Eigen::Quaterniond q_ub = mujoco.body_orientation(space.upper_body());
+    mj_jacBody(m, d, nullptr, jac_ub.data(), space.upper_body());
+    for (Side side : kSides) {
+      const int k = index_of(side), body = space.foot_body(side), arm = space.arm_body(side);
+      mj_jacBody(m, d, jac_pos.data(), jac_rot.data(), body);
+      x.segment<3>(L.foot_position[k]) = mujoco.body_position(body) - com;
+      J.middleRows<3>(L.foot_position[k]) = jac_pos - jac_com;
+      const Eigen::Vector3d phi = math::so3::log(q_ub.conjugate() * mujoco.body_orientation(body));
+      x.segment<3>(L.foot_orientation[k]) = phi;
+      J.middleRows<3>(L.foot_orientation[k]) = math::so3::inverse_left_jacobian(phi) *
+                                                mujoco.body_rotation(space.upper_body()).transpose() * (jac_rot - jac_ub);
+      mj_jacSubtreeCom(m, d, jac_pos.data(), arm);
+      x.segment(L.arm_com[k], L.arm_com_rows) = (mujoco.subtree_com(arm) - com).head(L.arm_com_rows);
+      J.middleRows(L.arm_com[k], L.arm_com_rows) = (jac_pos - jac_com).topRows(L.arm_com_rows);
+    }
+    const Eigen::Vector3d phi_ub = math::so3::log(Eigen::Quaterniond(R_ref).conjugate() * q_ub);
+    x.segment<3>(L.upper_body_orientation) = phi_ub;
+    J.middleRows<3>(L.upper_body_orientation) = math::so3::inverse_left_jacobian(phi_ub) * R_ref.transpose() * jac_ub;
+    x.segment<3>(L.com) = com;
+    J.middleRows<3>(L.com) = jac_com;
+    EXPECT_LT((data.x - x).cwiseAbs().maxCoeff(), 1e-12) << GetParam().name << " trial " << trial;
+    EXPECT_LT((data.J - J).cwiseAbs().maxCoeff(), 1e-12) << GetParam().name << " trial " << trial;
   }
 }
 
