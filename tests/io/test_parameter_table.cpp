@@ -4,6 +4,7 @@
 
 #include <functional>
 
+#include "io/robot_config.hpp"
 #include "io/yaml_reader.hpp"
 
 namespace biped {
@@ -114,6 +115,25 @@ TEST(ParameterTable, ReferenceShowsTheStructsDefaultsAndChecks) {
   EXPECT_EQ(markdown_table({rows[0]}),
             "| key | unit | default | check | description |\n|---|---|---|---|---|\n"
             "| `gains.gain` | 1/s | 2.5 | > 0 | the gain |\n");
+}
+
+const ParameterDoc& row_of(const std::vector<ParameterDoc>& rows, const std::string& key) {
+  for (const ParameterDoc& row : rows) {
+    if (row.key == key) return row;
+  }
+  throw std::runtime_error("no row " + key);
+}
+
+TEST(ParameterTable, RobotParameterDefaultsAreTheStructs) {
+  const auto rows = parameter_reference();
+  EXPECT_EQ(row_of(rows, "controller.stabilization.tilt_gain").default_value, number_text(StabilizerParams{}.tilt_gain));
+  EXPECT_EQ(row_of(rows, "controller.step_time").default_value, number_text(StepParameters{}.step_time));
+  EXPECT_EQ(row_of(rows, "simulation.timestep").default_value, number_text(WorldSpec{}.timestep));
+  EXPECT_EQ(row_of(rows, "controller.sensor_limits.frozen_cycles").default_value,
+            std::to_string(SensorLimits{}.frozen_cycles));
+  EXPECT_EQ(row_of(rows, "controller.software_limit_margin_deg").default_value, "5");
+  EXPECT_EQ(row_of(rows, "sensor_noise.imu_orientation_noise_deg").default_value,
+            number_text(SensorNoiseParams{}.imu_orientation_noise_rad * 180.0 / M_PI));
 }
 
 }  // namespace
