@@ -2,10 +2,13 @@
 
 #include <gtest/gtest.h>
 
+#include <fstream>
 #include <functional>
+#include <sstream>
 
 #include "io/robot_config.hpp"
 #include "io/yaml_reader.hpp"
+#include "test_support.hpp"
 
 namespace biped {
 namespace {
@@ -134,6 +137,23 @@ TEST(ParameterTable, RobotParameterDefaultsAreTheStructs) {
   EXPECT_EQ(row_of(rows, "controller.software_limit_margin_deg").default_value, "5");
   EXPECT_EQ(row_of(rows, "sensor_noise.imu_orientation_noise_deg").default_value,
             number_text(SensorNoiseParams{}.imu_orientation_noise_rad * 180.0 / M_PI));
+}
+
+// docs/scenarios.md holds the output of `biped params --markdown` between the markers.
+TEST(ParameterTable, ScenarioDocumentationHoldsTheGeneratedReference) {
+  std::ifstream in(test::source_path("docs/scenarios.md"));
+  ASSERT_TRUE(in);
+  std::stringstream text;
+  text << in.rdbuf();
+  const std::string doc = text.str();
+  const std::string begin = "<!-- BEGIN parameters (biped params --markdown) -->\n";
+  const std::string end = "<!-- END parameters -->";
+  const auto from = doc.find(begin);
+  ASSERT_NE(from, std::string::npos) << "no '" << begin << "' in docs/scenarios.md";
+  const auto to = doc.find(end, from);
+  ASSERT_NE(to, std::string::npos) << "no '" << end << "' in docs/scenarios.md";
+  EXPECT_EQ(doc.substr(from + begin.size(), to - from - begin.size()), markdown_table(parameter_reference()))
+      << "docs/scenarios.md is stale: replace the block with the output of `biped params --markdown`";
 }
 
 }  // namespace
