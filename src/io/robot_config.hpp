@@ -16,7 +16,7 @@ struct ControllerConfig {
   std::string type = "walking";  // walking | standing | weight_shift
   std::string model_path;  // the controller's own MJCF (default: the simulated robot's)
   bool stabilizer = true;  // used by the walking controller; the standing controller has none
-  double software_limit_margin_rad = 5.0 * M_PI / 180.0;
+  double software_limit_margin_rad = kSoftwareLimitMarginRad;
   StandingControllerParams standing;
   WalkingControllerParams walking;
   WeightShiftParams weight_shift;
