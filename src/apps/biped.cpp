@@ -146,6 +146,12 @@ int speed_sweep_command(const std::string& scenario_path, const biped::SpeedSwee
   return 0;
 }
 
+int params_command(bool markdown) {
+  const std::vector<biped::ParameterDoc> rows = biped::parameter_reference();
+  std::cout << (markdown ? biped::markdown_table(rows) : biped::text_table(rows));
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -196,6 +202,10 @@ int main(int argc, char** argv) {
   sweep->add_option("--json", sweep_json, "Write the results as JSON");
   sweep->add_option("--set", sweep_overrides, "Override a scenario key")->type_name("KEY=VALUE");
 
+  bool params_markdown = false;
+  CLI::App* params = app.add_subcommand("params", "List the robot files' parameters: key, default, unit, check, description");
+  params->add_flag("--markdown", params_markdown, "As the Markdown table of docs/scenarios.md");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -209,6 +219,7 @@ int main(int argc, char** argv) {
     if (*bench) return bench_command(bench_robot, bench_json, bench_duration);
     if (*push) return push_test_command(push_scenario, push_direction, push_overrides);
     if (*sweep) return speed_sweep_command(sweep_scenario, sweep_options, sweep_overrides, sweep_json);
+    if (*params) return params_command(params_markdown);
   } catch (const biped::InputError& e) {
     std::cerr << "error: " << e.what() << '\n';
     return kExitBadInput;

@@ -4,6 +4,7 @@
 #include <cstdlib>
 #include <filesystem>
 
+#include "io/parameter_table.hpp"
 #include "io/step_table_file.hpp"
 #include "io/yaml_reader.hpp"
 
@@ -12,29 +13,224 @@ namespace fs = std::filesystem;
 namespace biped {
 namespace {
 
-constexpr double kDeg = M_PI / 180.0;
-
 std::string resolve(const std::string& path, const std::string& relative_to_file) {
   const fs::path p(path);
   if (p.is_absolute()) return p.string();
   return (fs::path(relative_to_file).parent_path() / p).lexically_normal().string();
 }
 
+// simulation
+const ParameterTable<WorldSpec> kWorldParameters = {
+    {"timestep", &WorldSpec::timestep, "s", kPositive, "physics step"},
+    {"ground_friction", &WorldSpec::ground_friction, "", kPositive,
+     "Coulomb friction of the soles and other bodies with the ground"},
+    {"contact_timeconst", &WorldSpec::contact_timeconst, "s", kPositive,
+     "MuJoCo soft contact (solref) of the non-sole bodies: time constant, at least twice the timestep"},
+    {"contact_dampratio", &WorldSpec::contact_dampratio, "", kPositive,
+     "MuJoCo soft contact of the non-sole bodies: damping ratio"},
+};
+const ParameterTable<SimulationParams> kSimulationParameters = {
+    {"control_period", &SimulationParams::control_period, "s", kPositive,
+     "controller cycle, a whole multiple of the timestep"},
+};
+const ParameterTable<SoleContactParams> kSoleContactParameters = {
+    {"sole_stiffness_per_foot", &SoleContactParams::stiffness_per_foot, "N/m", kPositive,
+     "sole contact per foot: normal stiffness, also of the friction bristles"},
+    {"sole_damping_per_foot", &SoleContactParams::damping_per_foot, "N·s/m", kNonNegative,
+     "sole contact per foot: normal damping, also of the friction bristles"},
+};
+
+const ParameterTable<DriveParams> kDriveParameters = {
+    {"bandwidth_hz", &DriveParams::bandwidth_hz, "Hz", kPositive, "joint servos: position-loop bandwidth ω_p/2π"},
+    {"velocity_loop_ratio", &DriveParams::velocity_loop_ratio, "", kPositive, "joint servos: ω_v/ω_p"},
+    {"integral_ratio", &DriveParams::integral_ratio, "", kNonNegative,
+     "joint servos: integral corner of the velocity loop ω_i/ω_v"},
+};
+
+const ParameterTable<SimulationParams> kEncoderParameters = {
+    {"bits", &SimulationParams::encoder_bits, "bit", kPositive,
+     "link-side encoder resolution 2π/2^bits (per joint: `encoders.bits_of: {JOINT: bits}`)"},
+};
+
+const ParameterTable<SensorNoiseParams> kSensorNoiseParameters = {
+    {"imu_orientation_noise_deg", Degrees<SensorNoiseParams>{&SensorNoiseParams::imu_orientation_noise_rad}, "deg",
+     kNonNegative, "IMU orientation: white noise, each axis"},
+    {"imu_orientation_bias_deg", Degrees<SensorNoiseParams>{&SensorNoiseParams::imu_orientation_bias_rad}, "deg",
+     kNonNegative, "IMU orientation: bias, constant per run, each axis"},
+    {"gyro_noise_rad_s", &SensorNoiseParams::gyro_noise_rad_s, "rad/s", kNonNegative, "gyroscope: white noise"},
+    {"gyro_bias_rad_s", &SensorNoiseParams::gyro_bias_rad_s, "rad/s", kNonNegative, "gyroscope: bias"},
+    {"accel_noise_m_s2", &SensorNoiseParams::accel_noise_m_s2, "m/s²", kNonNegative, "accelerometer: white noise"},
+    {"accel_bias_m_s2", &SensorNoiseParams::accel_bias_m_s2, "m/s²", kNonNegative, "accelerometer: bias"},
+    {"ft_force_noise_n", &SensorNoiseParams::ft_force_noise_n, "N", kNonNegative, "F/T sensors: force white noise"},
+    {"ft_force_bias_n", &SensorNoiseParams::ft_force_bias_n, "N", kNonNegative, "F/T sensors: force bias"},
+    {"ft_torque_noise_nm", &SensorNoiseParams::ft_torque_noise_nm, "N·m", kNonNegative,
+     "F/T sensors: torque white noise"},
+    {"ft_torque_bias_nm", &SensorNoiseParams::ft_torque_bias_nm, "N·m", kNonNegative, "F/T sensors: torque bias"},
+};
+
+// controller
+const ParameterTable<ControllerConfig> kControllerParameters = {
+    {"stabilizer", &ControllerConfig::stabilizer, "", {},
+     "walking controller: stabilizing control on, or off (the open-loop baseline)"},
+    {"software_limit_margin_deg", Degrees<ControllerConfig>{&ControllerConfig::software_limit_margin_rad}, "deg",
+     kNonNegative, "software joint limits = hard limits minus this"},
+};
+const ParameterTable<StepParameters> kStepParameters = {
+    {"step_time", &StepParameters::step_time, "s", kPositive,
+     "walking pattern without a step table: one step, single plus double support"},
+    {"double_support_ratio", &StepParameters::double_support_ratio, "", positive_below(0.8),
+     "walking pattern without a step table: share of the step time on both feet"},
+    {"clearance", &StepParameters::clearance, "m", kNonNegative,
+     "walking pattern without a step table: swing-foot lift"},
+};
+const ParameterTable<WalkingPlanParams> kWalkingPlanParameters = {
+    {"start_shift", &WalkingPlanParams::start_shift, "s", kNonNegative,
+     "extra double support before the first step from standing"},
+    {"arm_swing_gain", &WalkingPlanParams::arm_swing_gain, "", kNonNegative,
+     "arm CoM forward offset per metre of foot separation"},
+};
+const ParameterTable<ResolvedMotionRateControlParams> kRmrcParameters = {
+    {"task_gain", &ResolvedMotionRateControlParams::task_gain, "", positive_at_most(1.0, "fraction of the error per cycle"),
+     "eq. (21): K_x, fraction of the task error removed per cycle"},
+    {"null_space_gain", &ResolvedMotionRateControlParams::null_space_gain, "1/s", kNonNegative, "eq. (21): α_N"},
+    {"joint_velocity_limit", &ResolvedMotionRateControlParams::joint_velocity_limit, "rad/s", kPositive,
+     "eq. (21): joint rate limit, every joint"},
+};
+const ParameterTable<StandingControllerParams> kStandingParameters = {
+    {"ramp_time", &StandingControllerParams::ramp_time, "s", kNonNegative,
+     "standing controller: time to move into the reference pose"},
+};
+const ParameterTable<WeightShiftParams> kWeightShiftParameters = {
+    {"lift_height", &WeightShiftParams::lift_height, "m", kNonNegative, "weight-shift controller: lift of the free foot"},
+    {"shift_time", &WeightShiftParams::shift_time, "s", kPositive,
+     "weight-shift controller: CoM over the stance foot (and back)"},
+    {"lift_time", &WeightShiftParams::lift_time, "s", kPositive, "weight-shift controller: foot up (and down)"},
+    {"hold_time", &WeightShiftParams::hold_time, "s", kNonNegative, "weight-shift controller: on one foot"},
+};
+
+const ParameterTable<CommandLimits> kCommandLimitParameters = {
+    {"vx_min", &CommandLimits::vx_min, "m/s", kFinite, "feasible commands (beyond them saturated): slowest forward speed"},
+    {"vx_max", &CommandLimits::vx_max, "m/s", kNonNegative,
+     "fastest forward speed (a step table lowers it to its fastest feasible row)"},
+    {"vx_rate", &CommandLimits::vx_rate, "m/s²", kPositive,
+     "the gait's forward speed changes by at most this × step time per step"},
+    {"vy_max", &CommandLimits::vy_max, "m/s", kNonNegative, "sideways speed, either side"},
+    {"omega_max", &CommandLimits::omega_max, "rad/s", kNonNegative, "turn rate, either side"},
+};
+
+const ParameterTable<StabilizerParams> kStabilizerParameters = {
+    {"tilt_gain", &StabilizerParams::tilt_gain, "N·m/rad", kNonNegative, "eq. (10): K_P on the upper-body tilt"},
+    {"tilt_rate_gain", &StabilizerParams::tilt_rate_gain, "N·m·s/rad", kNonNegative,
+     "eq. (10): K_D on the upper-body tilt"},
+    {"com_gain", &StabilizerParams::com_gain, "N·m/m", kNonNegative,
+     "eq. (10): K_P on the CoM relative to the stance foot"},
+    {"com_rate_gain", &StabilizerParams::com_rate_gain, "N·m·s/m", kNonNegative,
+     "eq. (10): K_D on the CoM relative to the stance foot"},
+    {"force_gain", &StabilizerParams::force_gain, "1/s", kNonNegative, "eq. (14): K_λ"},
+    {"feedforward_gain", &StabilizerParams::feedforward_gain, "", kNonNegative, "eq. (14): K_λ,ff"},
+    {"pitch_gain_scale", &StabilizerParams::pitch_gain_scale, "", kNonNegative, "eq. (14): scale of the T_y row"},
+    {"position_gain", &StabilizerParams::position_gain, "1/s", kPositive,
+     "eq. (20): K_λx, return of a foot's modification without contact"},
+    {"contact_stiffness", &StabilizerParams::contact_stiffness, "N/m", kPositive, "eq. (11): C per foot"},
+    {"heel_stiffness_share", &StabilizerParams::heel_stiffness_share, "",
+     positive_below(1.0, "the toe elements need stiffness"),
+     "eq. (11), feet with a toe segment: share of C on the heel segment's elements"},
+    {"contact_tolerance", &StabilizerParams::contact_tolerance, "m", kNonNegative,
+     "lift beyond the sole's deflection at which an element leaves contact"},
+    {"toe_contact", &StabilizerParams::toe_contact, "", {},
+     "recognize rolling on the toe (CoP ahead of the toe joint)"},
+    {"cop_margin", &StabilizerParams::cop_margin, "m", kNonNegative,
+     "eq. (10) sat: the desired CoP stays this far inside the sole"},
+    {"contact_filter_time", &StabilizerParams::contact_filter_time, "s", kPositive,
+     "α_λ of eq. (20): filter of the measured normal force"},
+    {"contact_force_low", &StabilizerParams::contact_force_low, "N", kNonNegative,
+     "α_λ of eq. (20): force control starts above this filtered normal force"},
+    {"contact_force_high", &StabilizerParams::contact_force_high, "N", kPositive,
+     "α_λ of eq. (20): force control is complete above this (above contact_force_low)"},
+    {"max_tilt", &StabilizerParams::max_tilt, "rad", kPositive, "bound of a foot's tilt modification Δx_λ"},
+    {"max_height", &StabilizerParams::max_height, "m", kPositive, "bound of a foot's height modification Δx_λ"},
+    {"force_integral_gain", &StabilizerParams::force_integral_gain, "1/s²", kNonNegative,
+     "extension of eq. (14): K_λ,INT (0: off)"},
+    {"stiffness_adaptation", &StabilizerParams::stiffness_adaptation, "", {},
+     "extension of eq. (11): on-line estimate of C"},
+    {"adaptation_time", &StabilizerParams::adaptation_time, "s", kPositive, "stiffness adaptation: estimator memory"},
+    {"adaptation_min_scale", &StabilizerParams::adaptation_min_scale, "", kPositive,
+     "stiffness adaptation: lower bound of the estimate as a multiple of C (at most 1)"},
+    {"adaptation_max_scale", &StabilizerParams::adaptation_max_scale, "", kPositive,
+     "stiffness adaptation: upper bound of the estimate as a multiple of C (at least 1)"},
+};
+
+const ParameterTable<SensorLimits> kSensorLimitParameters = {
+    {"max_force", &SensorLimits::max_force, "N", kPositive, "out of range: F/T force, per axis"},
+    {"max_torque", &SensorLimits::max_torque, "N·m", kPositive, "out of range: F/T torque, per axis"},
+    {"max_angular_rate", &SensorLimits::max_angular_rate, "rad/s", kPositive, "out of range: gyroscope"},
+    {"max_acceleration", &SensorLimits::max_acceleration, "m/s²", kPositive, "out of range: accelerometer"},
+    {"encoder_margin", &SensorLimits::encoder_margin, "rad", kNonNegative, "out of range: encoder beyond the hard limits"},
+    {"frozen_cycles", &SensorLimits::frozen_cycles, "", kNonNegative,
+     "identical F/T or IMU readings in a row that mean a dead sensor (0: off)"},
+};
+
+const ParameterTable<TerrainAdaptationParams> kTerrainAdaptationParameters = {
+    {"enabled", &TerrainAdaptationParams::enabled, "", {}, "adaptation to unexpected terrain (with the stabilizer)"},
+    {"contact_force", &TerrainAdaptationParams::contact_force, "N", kPositive,
+     "filtered normal force that means ground contact"},
+    {"filter_time", &TerrainAdaptationParams::filter_time, "s", kPositive, "filter of the normal force"},
+    {"search_speed", &TerrainAdaptationParams::search_speed, "m/s", kPositive,
+     "descent of a foot that finds no ground at the planned touchdown"},
+    {"search_delay", &TerrainAdaptationParams::search_delay, "s", kNonNegative,
+     "the descent starts this long after the planned touchdown"},
+    {"max_step", &TerrainAdaptationParams::max_step, "m", kPositive,
+     "bound of a foothold's height against the other foot's"},
+    {"com_follow_time", &TerrainAdaptationParams::com_follow_time, "s", kPositive,
+     "time constant of the CoM height following the footholds"},
+    {"cop_band", &TerrainAdaptationParams::cop_band, "m", kPositive,
+     "partial support at touchdown: CoP error that starts the foot's turn"},
+    {"cop_filter_time", &TerrainAdaptationParams::cop_filter_time, "s", kPositive,
+     "partial support: filter of that CoP error"},
+    {"tilt_search_speed", &TerrainAdaptationParams::tilt_search_speed, "rad/s", kPositive,
+     "partial support: turn rate of the foot about its edge"},
+    {"max_tilt", &TerrainAdaptationParams::max_tilt, "rad", kPositive, "partial support: bound of a foot's tilt"},
+};
+
+ParameterSection simulation_section(SimulationParams& p) {
+  return {"simulation",
+          {{kWorldParameters, p.world}, {kSimulationParameters, p}, {kSoleContactParameters, p.sole_contact}},
+          {}};
+}
+ParameterSection drives_section(DriveParams& p) { return {"drives", {{kDriveParameters, p}}, {}}; }
+ParameterSection encoders_section(SimulationParams& p) { return {"encoders", {{kEncoderParameters, p}}, {"bits_of"}}; }
+ParameterSection sensor_noise_section(SensorNoiseParams& p) {
+  return {"sensor_noise", {{kSensorNoiseParameters, p}}, {}};
+}
+ParameterSection controller_section(ControllerConfig& p) {
+  WalkingControllerParams& w = p.walking;
+  return {"controller",
+          {{kControllerParameters, p},
+           {kStepParameters, w.plan.step},
+           {kWalkingPlanParameters, w.plan},
+           {kRmrcParameters, w.rmrc},
+           {kStandingParameters, p.standing},
+           {kWeightShiftParameters, p.weight_shift}},
+          {"type", "model", "stance", "step_table", "limits", "stabilization", "sensor_limits", "terrain_adaptation"}};
+}
+ParameterSection command_limits_section(CommandLimits& p) {
+  return {"controller.limits", {{kCommandLimitParameters, p}}, {}};
+}
+ParameterSection stabilization_section(StabilizerParams& p) {
+  return {"controller.stabilization", {{kStabilizerParameters, p}}, {}};
+}
+ParameterSection sensor_limits_section(SensorLimits& p) {
+  return {"controller.sensor_limits", {{kSensorLimitParameters, p}}, {}};
+}
+ParameterSection terrain_adaptation_section(TerrainAdaptationParams& p) {
+  return {"controller.terrain_adaptation", {{kTerrainAdaptationParameters, p}}, {}};
+}
+
 void read_simulation(const YamlReader& r, const YAML::Node& sim, SimulationParams& p) {
-  r.expect_keys(sim, "simulation", {"timestep", "control_period", "ground_friction", "contact_timeconst",
-                                    "contact_dampratio", "sole_stiffness_per_foot", "sole_damping_per_foot"});
-  if (!sim) return;
-  p.world.timestep = r.positive_or(sim, "simulation", "timestep", p.world.timestep);
-  p.control_period = r.positive_or(sim, "simulation", "control_period", p.control_period);
-  p.world.ground_friction = r.positive_or(sim, "simulation", "ground_friction", p.world.ground_friction);
+  read_section(r, sim, simulation_section(p));
   p.sole_contact.friction = p.world.ground_friction;
-  p.sole_contact.stiffness_per_foot =
-      r.positive_or(sim, "simulation", "sole_stiffness_per_foot", p.sole_contact.stiffness_per_foot);
-  p.sole_contact.damping_per_foot = r.non_negative_or(sim, "simulation", "sole_damping_per_foot", p.sole_contact.damping_per_foot);
   p.sole_contact.tangential_stiffness_per_foot = p.sole_contact.stiffness_per_foot;
   p.sole_contact.tangential_damping_per_foot = p.sole_contact.damping_per_foot;
-  p.world.contact_timeconst = r.positive_or(sim, "simulation", "contact_timeconst", p.world.contact_timeconst);
-  p.world.contact_dampratio = r.positive_or(sim, "simulation", "contact_dampratio", p.world.contact_dampratio);
   if (p.world.contact_timeconst < 2.0 * p.world.timestep) {
     r.fail(sim["contact_timeconst"] ? sim["contact_timeconst"] : sim, "simulation.contact_timeconst",
            "must be at least twice simulation.timestep for a stable contact");
@@ -47,89 +243,19 @@ void read_simulation(const YamlReader& r, const YAML::Node& sim, SimulationParam
 }
 
 void read_stabilization(const YamlReader& r, const YAML::Node& n, StabilizerParams& p) {
-  const std::string where = "controller.stabilization";
-  r.expect_keys(n, where, {"tilt_gain", "tilt_rate_gain", "com_gain", "com_rate_gain", "force_gain", "feedforward_gain",
-                           "pitch_gain_scale", "position_gain", "contact_stiffness", "heel_stiffness_share", "contact_tolerance",
-                           "toe_contact",
-                           "cop_margin", "contact_filter_time",
-                           "contact_force_low", "contact_force_high", "max_tilt", "max_height",
-                           "force_integral_gain", "stiffness_adaptation", "adaptation_time",
-                           "adaptation_min_scale", "adaptation_max_scale"});
-  if (!n) return;
-  p.tilt_gain = r.non_negative_or(n, where, "tilt_gain", p.tilt_gain);
-  p.tilt_rate_gain = r.non_negative_or(n, where, "tilt_rate_gain", p.tilt_rate_gain);
-  p.com_gain = r.non_negative_or(n, where, "com_gain", p.com_gain);
-  p.com_rate_gain = r.non_negative_or(n, where, "com_rate_gain", p.com_rate_gain);
-  p.force_gain = r.non_negative_or(n, where, "force_gain", p.force_gain);
-  p.feedforward_gain = r.non_negative_or(n, where, "feedforward_gain", p.feedforward_gain);
-  p.pitch_gain_scale = r.non_negative_or(n, where, "pitch_gain_scale", p.pitch_gain_scale);
-  p.position_gain = r.positive_or(n, where, "position_gain", p.position_gain);
-  p.contact_stiffness = r.positive_or(n, where, "contact_stiffness", p.contact_stiffness);
-  p.heel_stiffness_share = r.positive_or(n, where, "heel_stiffness_share", p.heel_stiffness_share);
-  if (p.heel_stiffness_share >= 1.0) {
-    r.fail(n["heel_stiffness_share"], where + ".heel_stiffness_share", "must be below 1 (the toe elements need stiffness)");
-  }
-  p.contact_tolerance = r.non_negative_or(n, where, "contact_tolerance", p.contact_tolerance);
-  p.toe_contact = r.boolean_or(n, where, "toe_contact", p.toe_contact);
-  p.cop_margin = r.non_negative_or(n, where, "cop_margin", p.cop_margin);
-  p.contact_filter_time = r.positive_or(n, where, "contact_filter_time", p.contact_filter_time);
-  p.contact_force_low = r.non_negative_or(n, where, "contact_force_low", p.contact_force_low);
-  p.contact_force_high = r.positive_or(n, where, "contact_force_high", p.contact_force_high);
+  const ParameterSection section = stabilization_section(p);
+  read_section(r, n, section);
   if (p.contact_force_high <= p.contact_force_low) {
-    r.fail(n["contact_force_high"] ? n["contact_force_high"] : n, where + ".contact_force_high",
+    r.fail(n["contact_force_high"] ? n["contact_force_high"] : n, section.where + ".contact_force_high",
            "must be above contact_force_low");
   }
-  p.max_tilt = r.positive_or(n, where, "max_tilt", p.max_tilt);
-  p.max_height = r.positive_or(n, where, "max_height", p.max_height);
-  p.force_integral_gain = r.non_negative_or(n, where, "force_integral_gain", p.force_integral_gain);
-  p.stiffness_adaptation = r.boolean_or(n, where, "stiffness_adaptation", p.stiffness_adaptation);
-  p.adaptation_time = r.positive_or(n, where, "adaptation_time", p.adaptation_time);
-  p.adaptation_min_scale = r.positive_or(n, where, "adaptation_min_scale", p.adaptation_min_scale);
-  p.adaptation_max_scale = r.positive_or(n, where, "adaptation_max_scale", p.adaptation_max_scale);
   if (p.adaptation_min_scale > 1.0 || p.adaptation_max_scale < 1.0) {
-    r.fail(n, where, "adaptation_min_scale must be at most 1 and adaptation_max_scale at least 1");
+    r.fail(n, section.where, "adaptation_min_scale must be at most 1 and adaptation_max_scale at least 1");
   }
-}
-
-void read_sensor_limits(const YamlReader& r, const YAML::Node& n, SensorLimits& p) {
-  const std::string where = "controller.sensor_limits";
-  r.expect_keys(n, where, {"max_force", "max_torque", "max_angular_rate", "max_acceleration", "encoder_margin",
-                           "frozen_cycles"});
-  if (!n) return;
-  p.max_force = r.positive_or(n, where, "max_force", p.max_force);
-  p.max_torque = r.positive_or(n, where, "max_torque", p.max_torque);
-  p.max_angular_rate = r.positive_or(n, where, "max_angular_rate", p.max_angular_rate);
-  p.max_acceleration = r.positive_or(n, where, "max_acceleration", p.max_acceleration);
-  p.encoder_margin = r.non_negative_or(n, where, "encoder_margin", p.encoder_margin);
-  const long frozen = r.integer_or(n, where, "frozen_cycles", p.frozen_cycles);
-  if (frozen < 0) r.fail(n["frozen_cycles"], where + ".frozen_cycles", "must be non-negative (0: off)");
-  p.frozen_cycles = static_cast<int>(frozen);
-}
-
-void read_terrain_adaptation(const YamlReader& r, const YAML::Node& n, TerrainAdaptationParams& p) {
-  const std::string where = "controller.terrain_adaptation";
-  r.expect_keys(n, where, {"enabled", "contact_force", "filter_time", "search_speed", "search_delay", "max_step", "com_follow_time",
-                           "cop_band", "cop_filter_time", "tilt_search_speed", "max_tilt"});
-  if (!n) return;
-  p.enabled = r.boolean_or(n, where, "enabled", p.enabled);
-  p.contact_force = r.positive_or(n, where, "contact_force", p.contact_force);
-  p.filter_time = r.positive_or(n, where, "filter_time", p.filter_time);
-  p.search_speed = r.positive_or(n, where, "search_speed", p.search_speed);
-  p.search_delay = r.non_negative_or(n, where, "search_delay", p.search_delay);
-  p.max_step = r.positive_or(n, where, "max_step", p.max_step);
-  p.com_follow_time = r.positive_or(n, where, "com_follow_time", p.com_follow_time);
-  p.cop_band = r.positive_or(n, where, "cop_band", p.cop_band);
-  p.cop_filter_time = r.positive_or(n, where, "cop_filter_time", p.cop_filter_time);
-  p.tilt_search_speed = r.positive_or(n, where, "tilt_search_speed", p.tilt_search_speed);
-  p.max_tilt = r.positive_or(n, where, "max_tilt", p.max_tilt);
 }
 
 void read_controller(const YamlReader& r, const YAML::Node& c, ControllerConfig& p) {
-  r.expect_keys(c, "controller", {"type", "model", "stabilizer", "ramp_time", "software_limit_margin_deg", "step_time",
-                                  "double_support_ratio", "clearance", "start_shift", "arm_swing_gain", "task_gain",
-                                  "null_space_gain", "joint_velocity_limit", "limits", "stance", "lift_height", "shift_time",
-                                  "lift_time", "hold_time", "step_table", "stabilization", "sensor_limits", "terrain_adaptation"});
-  if (!c) return;
+  read_section(r, c, controller_section(p));
   p.type = r.text_or(c, "controller", "type", p.type);
   if (p.type != "walking" && p.type != "standing" && p.type != "weight_shift") {
     r.fail(c["type"], "controller.type", "unknown controller '" + p.type + "' (known: walking, standing, weight_shift)");
@@ -138,48 +264,23 @@ void read_controller(const YamlReader& r, const YAML::Node& c, ControllerConfig&
   const std::string stance = r.text_or(c, "controller", "stance", ws.stance == Side::Left ? "left" : "right");
   if (stance != "left" && stance != "right") r.fail(c["stance"], "controller.stance", "must be left or right");
   ws.stance = stance == "left" ? Side::Left : Side::Right;
-  ws.lift_height = r.non_negative_or(c, "controller", "lift_height", ws.lift_height);
-  ws.shift_time = r.positive_or(c, "controller", "shift_time", ws.shift_time);
-  ws.lift_time = r.positive_or(c, "controller", "lift_time", ws.lift_time);
-  ws.hold_time = r.non_negative_or(c, "controller", "hold_time", ws.hold_time);
   WalkingControllerParams& w = p.walking;
+  // Before the limits: a scenario's limits.vx_max may still go beyond the table.
   if (c["step_table"]) {
     const std::string table = resolve(r.text(c, "controller", "step_table"), r.file());
     if (!fs::exists(table)) r.fail(c["step_table"], "controller.step_table", "no such file: " + table);
     w.plan.table = read_step_table(table);
     w.plan.limits.vx_max = std::min(w.plan.limits.vx_max, fastest_feasible_speed(w.plan.table));
   }
-  w.plan.step.step_time = r.positive_or(c, "controller", "step_time", w.plan.step.step_time);
-  w.plan.step.double_support_ratio = r.positive_or(c, "controller", "double_support_ratio", w.plan.step.double_support_ratio);
-  if (w.plan.step.double_support_ratio >= 0.8) r.fail(c["double_support_ratio"], "controller.double_support_ratio", "must be below 0.8");
-  w.plan.step.clearance = r.non_negative_or(c, "controller", "clearance", w.plan.step.clearance);
-  w.plan.start_shift = r.non_negative_or(c, "controller", "start_shift", w.plan.start_shift);
-  w.plan.arm_swing_gain = r.non_negative_or(c, "controller", "arm_swing_gain", w.plan.arm_swing_gain);
-  w.rmrc.task_gain = r.positive_or(c, "controller", "task_gain", w.rmrc.task_gain);
-  if (w.rmrc.task_gain > 1.0) r.fail(c["task_gain"], "controller.task_gain", "must be at most 1 (fraction of the error per cycle)");
-  w.rmrc.null_space_gain = r.non_negative_or(c, "controller", "null_space_gain", w.rmrc.null_space_gain);
-  w.rmrc.joint_velocity_limit = r.positive_or(c, "controller", "joint_velocity_limit", w.rmrc.joint_velocity_limit);
-  const YAML::Node limits = r.mapping(c, "controller", "limits");
-  r.expect_keys(limits, "controller.limits", {"vx_min", "vx_max", "vx_rate", "vy_max", "omega_max"});
-  if (limits) {
-    w.plan.limits.vx_min = r.number_or(limits, "controller.limits", "vx_min", w.plan.limits.vx_min);
-    w.plan.limits.vx_max = r.non_negative_or(limits, "controller.limits", "vx_max", w.plan.limits.vx_max);
-    w.plan.limits.vx_rate = r.positive_or(limits, "controller.limits", "vx_rate", w.plan.limits.vx_rate);
-    w.plan.limits.vy_max = r.non_negative_or(limits, "controller.limits", "vy_max", w.plan.limits.vy_max);
-    w.plan.limits.omega_max = r.non_negative_or(limits, "controller.limits", "omega_max", w.plan.limits.omega_max);
-  }
+  read_section(r, r.mapping(c, "controller", "limits"), command_limits_section(w.plan.limits));
   if (c["model"]) {
     p.model_path = resolve(r.text(c, "controller", "model"), r.file());
     if (!fs::exists(p.model_path)) r.fail(c["model"], "controller.model", "no such file: " + p.model_path);
   }
-  p.stabilizer = r.boolean_or(c, "controller", "stabilizer", p.stabilizer);
   p.walking.stabilizer = p.stabilizer;
   read_stabilization(r, r.mapping(c, "controller", "stabilization"), w.stabilization);
-  read_sensor_limits(r, r.mapping(c, "controller", "sensor_limits"), w.sensor_limits);
-  read_terrain_adaptation(r, r.mapping(c, "controller", "terrain_adaptation"), w.terrain);
-  p.standing.ramp_time = r.non_negative_or(c, "controller", "ramp_time", p.standing.ramp_time);
-  p.software_limit_margin_rad =
-      r.non_negative_or(c, "controller", "software_limit_margin_deg", p.software_limit_margin_rad / kDeg) * kDeg;
+  read_section(r, r.mapping(c, "controller", "sensor_limits"), sensor_limits_section(w.sensor_limits));
+  read_section(r, r.mapping(c, "controller", "terrain_adaptation"), terrain_adaptation_section(w.terrain));
 }
 
 void read_robot_file(const std::string& file, RunConfig& config) {
@@ -191,48 +292,17 @@ void read_robot_file(const std::string& file, RunConfig& config) {
     r.fail(root["model"], "model", "no such file: " + config.sim.world.robot_mjcf);
   }
   read_simulation(r, r.mapping(root, "", "simulation"), config.sim);
-
-  const YAML::Node drives = r.mapping(root, "", "drives");
-  r.expect_keys(drives, "drives", {"bandwidth_hz", "velocity_loop_ratio", "integral_ratio"});
-  if (drives) {
-    DriveParams& dp = config.sim.drives;
-    dp.bandwidth_hz = r.positive_or(drives, "drives", "bandwidth_hz", dp.bandwidth_hz);
-    dp.velocity_loop_ratio = r.positive_or(drives, "drives", "velocity_loop_ratio", dp.velocity_loop_ratio);
-    dp.integral_ratio = r.non_negative_or(drives, "drives", "integral_ratio", dp.integral_ratio);
-  }
+  read_section(r, r.mapping(root, "", "drives"), drives_section(config.sim.drives));
 
   const YAML::Node encoders = r.mapping(root, "", "encoders");
-  r.expect_keys(encoders, "encoders", {"bits", "bits_of"});
-  if (encoders) {
-    config.sim.encoder_bits = static_cast<int>(r.integer_or(encoders, "encoders", "bits", config.sim.encoder_bits));
-    const YAML::Node per_joint = r.mapping(encoders, "encoders", "bits_of");
-    if (per_joint) {
-      for (const auto& entry : per_joint) {
-        const std::string joint = entry.first.Scalar();
-        config.sim.encoder_bits_of[joint] = static_cast<int>(r.integer_or(per_joint, "encoders.bits_of", joint.c_str(), 16));
-      }
-    }
+  read_section(r, encoders, encoders_section(config.sim));
+  const YAML::Node per_joint = r.mapping(encoders, "encoders", "bits_of");
+  for (const auto& entry : per_joint) {
+    const std::string joint = entry.first.Scalar();
+    config.sim.encoder_bits_of[joint] = *read_integer(r, per_joint, "encoders.bits_of", joint.c_str(), kPositive);
   }
 
-  const YAML::Node noise = r.mapping(root, "", "sensor_noise");
-  r.expect_keys(noise, "sensor_noise",
-                {"imu_orientation_noise_deg", "imu_orientation_bias_deg", "gyro_noise_rad_s", "gyro_bias_rad_s",
-                 "accel_noise_m_s2", "accel_bias_m_s2", "ft_force_noise_n", "ft_force_bias_n", "ft_torque_noise_nm",
-                 "ft_torque_bias_nm"});
-  if (noise) {
-    SensorNoiseParams& n = config.sim.noise_levels;
-    const char* w = "sensor_noise";
-    n.imu_orientation_noise_rad = r.non_negative_or(noise, w, "imu_orientation_noise_deg", n.imu_orientation_noise_rad / kDeg) * kDeg;
-    n.imu_orientation_bias_rad = r.non_negative_or(noise, w, "imu_orientation_bias_deg", n.imu_orientation_bias_rad / kDeg) * kDeg;
-    n.gyro_noise_rad_s = r.non_negative_or(noise, w, "gyro_noise_rad_s", n.gyro_noise_rad_s);
-    n.gyro_bias_rad_s = r.non_negative_or(noise, w, "gyro_bias_rad_s", n.gyro_bias_rad_s);
-    n.accel_noise_m_s2 = r.non_negative_or(noise, w, "accel_noise_m_s2", n.accel_noise_m_s2);
-    n.accel_bias_m_s2 = r.non_negative_or(noise, w, "accel_bias_m_s2", n.accel_bias_m_s2);
-    n.ft_force_noise_n = r.non_negative_or(noise, w, "ft_force_noise_n", n.ft_force_noise_n);
-    n.ft_force_bias_n = r.non_negative_or(noise, w, "ft_force_bias_n", n.ft_force_bias_n);
-    n.ft_torque_noise_nm = r.non_negative_or(noise, w, "ft_torque_noise_nm", n.ft_torque_noise_nm);
-    n.ft_torque_bias_nm = r.non_negative_or(noise, w, "ft_torque_bias_nm", n.ft_torque_bias_nm);
-  }
+  read_section(r, r.mapping(root, "", "sensor_noise"), sensor_noise_section(config.sim.noise_levels));
   read_controller(r, r.mapping(root, "", "controller"), config.controller);
 }
 
@@ -252,6 +322,16 @@ std::vector<std::string> known_robots() {
   }
   std::sort(names.begin(), names.end());
   return names;
+}
+
+std::vector<ParameterDoc> parameter_reference() {
+  SimulationParams sim;
+  ControllerConfig controller;
+  WalkingControllerParams& w = controller.walking;
+  return document_sections({simulation_section(sim), drives_section(sim.drives), encoders_section(sim),
+                            sensor_noise_section(sim.noise_levels), controller_section(controller),
+                            command_limits_section(w.plan.limits), stabilization_section(w.stabilization),
+                            sensor_limits_section(w.sensor_limits), terrain_adaptation_section(w.terrain)});
 }
 
 RunConfig make_run_config(const Scenario& s) {

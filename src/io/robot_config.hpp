@@ -6,6 +6,7 @@
 #include "control/standing_controller.hpp"
 #include "control/walking_controller.hpp"
 #include "control/weight_shift_controller.hpp"
+#include "io/parameter_table.hpp"
 #include "io/scenario.hpp"
 #include "sim/simulation.hpp"
 
@@ -15,7 +16,7 @@ struct ControllerConfig {
   std::string type = "walking";  // walking | standing | weight_shift
   std::string model_path;  // the controller's own MJCF (default: the simulated robot's)
   bool stabilizer = true;  // used by the walking controller; the standing controller has none
-  double software_limit_margin_rad = 5.0 * M_PI / 180.0;
+  double software_limit_margin_rad = kSoftwareLimitMarginRad;
   StandingControllerParams standing;
   WalkingControllerParams walking;
   WeightShiftParams weight_shift;
@@ -36,5 +37,9 @@ std::vector<std::string> known_robots();
 // Resolves the scenario's robot, reads its parameter file, and applies the scenario's overrides,
 // disturbances, terrain, model error and sensor settings. Throws InputError naming file and key.
 RunConfig make_run_config(const Scenario& scenario);
+
+// The parameter reference: every numeric and boolean key of the robot files (and of a scenario's
+// `simulation` and `controller` overrides), with the defaults of a default-constructed RunConfig.
+std::vector<ParameterDoc> parameter_reference();
 
 }  // namespace biped

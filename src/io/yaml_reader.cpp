@@ -1,5 +1,6 @@
 #include "io/yaml_reader.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -90,16 +91,14 @@ void YamlReader::fail(const YAML::Node& node, const std::string& key, const std:
 }
 
 void YamlReader::expect_keys(const YAML::Node& map, const std::string& where,
-                             std::initializer_list<const char*> allowed) const {
+                             const std::vector<std::string>& allowed) const {
   if (!map.IsDefined() || map.IsNull()) return;
   if (!map.IsMap()) fail(map, where.empty() ? "(top level)" : where, "expected a mapping of keys to values");
   for (const auto& entry : map) {
     const std::string key = entry.first.Scalar();
-    bool known = false;
-    for (const char* a : allowed) known = known || key == a;
-    if (!known) {
+    if (std::find(allowed.begin(), allowed.end(), key) == allowed.end()) {
       std::string list;
-      for (const char* a : allowed) list += (list.empty() ? "" : ", ") + std::string(a);
+      for (const std::string& a : allowed) list += (list.empty() ? "" : ", ") + a;
       fail(entry.first, join(where, key), "unknown key (allowed here: " + list + ")");
     }
   }

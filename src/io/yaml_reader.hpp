@@ -4,7 +4,6 @@
 #include <yaml-cpp/yaml.h>
 
 #include <Eigen/Core>
-#include <initializer_list>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -32,7 +31,7 @@ class YamlReader {
   [[noreturn]] void fail(const YAML::Node& node, const std::string& key, const std::string& problem) const;
 
   // `map` must be a mapping (or absent) whose keys are all in `allowed`.
-  void expect_keys(const YAML::Node& map, const std::string& where, std::initializer_list<const char*> allowed) const;
+  void expect_keys(const YAML::Node& map, const std::string& where, const std::vector<std::string>& allowed) const;
 
   double number(const YAML::Node& map, const std::string& where, const char* key) const;
   double number_or(const YAML::Node& map, const std::string& where, const char* key, double fallback) const;

@@ -27,6 +27,10 @@ struct Push {
   Eigen::Vector3d force = Eigen::Vector3d::Zero();  // [N] world frame, at the body's CoM
 };
 
+// Software joint limits = hard limits minus this (robots.md); the one default of the simulated
+// robot's and the controller's margin (make_run_config gives the simulation the controller's).
+inline constexpr double kSoftwareLimitMarginRad = 5.0 * M_PI / 180.0;
+
 struct SimulationParams {
   WorldSpec world;
   double control_period = 0.001;  // [s], a whole number of physics steps
@@ -40,7 +44,7 @@ struct SimulationParams {
   std::vector<SensorFault> faults;
   std::vector<Push> pushes;
   unsigned long long seed = 1;
-  double software_limit_margin_rad = 5.0 * M_PI / 180.0;
+  double software_limit_margin_rad = kSoftwareLimitMarginRad;
 };
 
 class Simulation {

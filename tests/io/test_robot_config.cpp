@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 
@@ -93,6 +94,131 @@ TEST(RobotConfig, StabilizationKeysMergeAndAreChecked) {
   EXPECT_THROW(make_run_config(s), InputError);
   s.controller = YAML::Load("{sensor_limits: {frozen_cycles: -1}}");
   EXPECT_THROW(make_run_config(s), InputError);
+}
+
+TEST(RobotConfig, ScenarioValuesReachEveryControllerSection) {
+  Scenario s = scenario_with("lola");
+  s.controller = YAML::Load("{software_limit_margin_deg: 2, step_time: 0.9, task_gain: 0.5, ramp_time: 2, "
+                            "limits: {vx_rate: 0.3}, sensor_limits: {frozen_cycles: 7, max_force: 900}, "
+                            "terrain_adaptation: {enabled: false, cop_band: 0.05}}");
+  const RunConfig c = make_run_config(s);
+  const WalkingControllerParams& w = c.controller.walking;
+  EXPECT_EQ(c.controller.software_limit_margin_rad, 2.0 * (M_PI / 180.0));
+  EXPECT_EQ(c.sim.software_limit_margin_rad, c.controller.software_limit_margin_rad);
+  EXPECT_EQ(w.plan.step.step_time, 0.9);
+  EXPECT_EQ(w.rmrc.task_gain, 0.5);
+  EXPECT_EQ(c.controller.weight_shift.rmrc.task_gain, 0.5);
+  EXPECT_EQ(c.controller.standing.ramp_time, 2.0);
+  EXPECT_EQ(w.plan.limits.vx_rate, 0.3);
+  EXPECT_EQ(w.sensor_limits.frozen_cycles, 7);
+  EXPECT_EQ(w.sensor_limits.max_force, 900.0);
+  EXPECT_FALSE(w.terrain.enabled);
+  EXPECT_EQ(w.terrain.cop_band, 0.05);
+}
+
+std::string config_error(const char* section, const char* yaml) {
+  Scenario s = scenario_with("lola");
+  (std::string(section) == "controller" ? s.controller : s.simulation) = YAML::Load(yaml);
+  try {
+    make_run_config(s);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(RobotConfig, SingleAndCrossKeyChecksKeepTheirMessages) {
+  EXPECT_EQ(config_error("controller", "{double_support_ratio: 0.9}"),
+            "test.yaml:1: key 'controller.double_support_ratio': must be below 0.8");
+  EXPECT_EQ(config_error("controller", "{task_gain: 1.5}"),
+            "test.yaml:1: key 'controller.task_gain': must be at most 1 (fraction of the error per cycle)");
+  EXPECT_EQ(config_error("controller", "{stabilization: {heel_stiffness_share: 1}}"),
+            "test.yaml:1: key 'controller.stabilization.heel_stiffness_share': must be below 1 (the toe elements need "
+            "stiffness)");
+  EXPECT_EQ(config_error("controller", "{stabilization: {adaptation_min_scale: 2}}"),
+            "test.yaml:1: key 'controller.stabilization': adaptation_min_scale must be at most 1 and "
+            "adaptation_max_scale at least 1");
+  EXPECT_EQ(config_error("controller", "{stabilization: {contact_force_high: 20}}"),
+            "test.yaml:1: key 'controller.stabilization.contact_force_high': must be above contact_force_low");
+  EXPECT_EQ(config_error("simulation", "{contact_timeconst: 0.001}"),
+            "test.yaml:1: key 'simulation.contact_timeconst': must be at least twice simulation.timestep for a stable "
+            "contact");
+  EXPECT_EQ(config_error("simulation", "{control_period: 0.0015}"),
+            "test.yaml:1: key 'simulation.control_period': must be a whole multiple of simulation.timestep");
+  EXPECT_EQ(config_error("controller", "{limits: {vx_max: -1}}"),
+            "test.yaml:1: key 'controller.limits.vx_max': must not be negative (got -1)");
+  EXPECT_EQ(config_error("controller", "{sensor_limits: {frozen_cycles: 2.5}}"),
+            "test.yaml:1: key 'controller.sensor_limits.frozen_cycles': expected an integer");
+  EXPECT_NE(config_error("controller", "{limits: {vz_max: 1}}").find("test.yaml:1: key 'controller.limits.vz_max': unknown key"),
+            std::string::npos);
+}
+
+// Every key of the reference is read from a scenario, and its default passes its check.
+TEST(RobotConfig, EveryReferenceKeyOfTheScenarioSectionsIsReadWithItsDefault) {
+  YAML::Node root;
+  int overridden = 0;
+  for (const ParameterDoc& row : parameter_reference()) {
+    if (row.key.rfind("controller.", 0) != 0 && row.key.rfind("simulation.", 0) != 0) continue;
+    apply_override(root, row.key + "=" + row.default_value);
+    ++overridden;
+  }
+  EXPECT_GT(overridden, 50);
+  Scenario s = scenario_with(test::model_path("johnnie"));
+  s.controller = root["controller"];
+  s.simulation = root["simulation"];
+  const RunConfig c = make_run_config(s);
+  EXPECT_EQ(c.controller.walking.stabilization.tilt_gain, StabilizerParams{}.tilt_gain);
+  EXPECT_EQ(c.sim.world.timestep, WorldSpec{}.timestep);
+}
+
+// Keys only robot files hold (drives, encoders, sensor_noise): a robot file of its own, in a data
+// directory of its own.
+class CustomRobotFile : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const auto dir = test::fresh_dir("robot-config");
+    std::filesystem::create_directories(dir / "config" / "robots");
+    file_ = (dir / "config" / "robots" / "custom.yaml").string();
+    setenv("BIPED_DATA_DIR", dir.c_str(), 1);
+  }
+  void TearDown() override { unsetenv("BIPED_DATA_DIR"); }
+
+  RunConfig read(const std::string& body) {
+    std::ofstream(file_) << "model: " << test::model_path("lola") << "\n" << body;
+    return make_run_config(scenario_with("custom"));
+  }
+  std::string error_of(const std::string& body) {
+    try {
+      read(body);
+    } catch (const InputError& e) {
+      return e.what();
+    }
+    return "";
+  }
+  std::string file_;
+};
+
+TEST_F(CustomRobotFile, ValuesApplyAndDegreesConvert) {
+  const RunConfig c = read("drives: {bandwidth_hz: 18}\nencoders: {bits: 16, bits_of: {left_toe: 14}}\n"
+                           "sensor_noise: {imu_orientation_noise_deg: 0.5, gyro_noise_rad_s: 0.01}\n");
+  EXPECT_EQ(c.sim.drives.bandwidth_hz, 18.0);
+  EXPECT_EQ(c.sim.drives.integral_ratio, DriveParams{}.integral_ratio);
+  EXPECT_EQ(c.sim.encoder_bits, 16);
+  EXPECT_EQ(c.sim.encoder_bits_of.at("left_toe"), 14);
+  EXPECT_EQ(c.sim.noise_levels.imu_orientation_noise_rad, 0.5 * (M_PI / 180.0));
+  EXPECT_EQ(c.sim.noise_levels.imu_orientation_bias_rad, SensorNoiseParams{}.imu_orientation_bias_rad);
+  EXPECT_EQ(c.sim.noise_levels.gyro_noise_rad_s, 0.01);
+}
+
+TEST_F(CustomRobotFile, ErrorsNameFileKeyAndLine) {
+  EXPECT_EQ(error_of("drives:\n  bandwidth_hz: fast\n"), file_ + ":3: key 'drives.bandwidth_hz': expected a number");
+  EXPECT_EQ(error_of("sensor_noise:\n  gyro_bias_rad_s: -1\n"),
+            file_ + ":3: key 'sensor_noise.gyro_bias_rad_s': must not be negative (got -1)");
+  EXPECT_EQ(error_of("sensor_noise:\n  imu_orientation_noise_deg: .nan\n"),
+            file_ + ":3: key 'sensor_noise.imu_orientation_noise_deg': must be a finite number (got '.nan')");
+  EXPECT_EQ(error_of("encoders:\n  bits_of: {left_toe: 0}\n"),
+            file_ + ":3: key 'encoders.bits_of.left_toe': must be positive (got 0)");
+  EXPECT_EQ(error_of("encoders:\n  bit: 16\n").find(file_ + ":3: key 'encoders.bit': unknown key"), 0u);
 }
 
 TEST(RobotConfig, BareMjcfPathUsesDefaults) {
