@@ -41,5 +41,71 @@ TEST(CoMEstimator, MatchesTheGroundTruthFromSensorsOnly) {
   EXPECT_LT(worst, 0.002);
 }
 
+// Encoder readings of LOLA leaning its legs: both hip pitch joints turn at a constant rate from the
+// stand pose, so the CoM moves relative to the feet at a nearly constant velocity.
+struct LeaningLegs {
+  const RobotModel& model;
+  SensorData sensors;
+  static constexpr double kRate = 0.3;  // [rad/s]
+  explicit LeaningLegs(const RobotModel& m) : model(m), sensors(m.num_joints()) {
+    sensors.joint_position = model.stand_pose();
+  }
+  const SensorData& at(double t) {
+    sensors.time = t;
+    sensors.joint_position = model.stand_pose();
+    for (const char* hip : {"left_hip_pitch", "right_hip_pitch"}) sensors.joint_position[model.joint_index(hip)] += kRate * t;
+    return sensors;
+  }
+};
+
+// The rate starts from zero: at the first update, after reset(), and after a change of stance foot
+// (the estimate jumps to the other foot: no rate from that jump).
+TEST(CoMEstimator, RateRestartsFromZeroAtTheFirstUpdateAndAtAStanceChange) {
+  const RobotModel model = test::load_model("lola");
+  CoMEstimator estimator(model);
+  LeaningLegs legs(model);
+  const double dt = 0.001;
+  estimator.update(legs.at(0.0), Side::Left, dt);
+  EXPECT_EQ(estimator.rate(), Eigen::Vector2d::Zero());
+  for (int i = 1; i <= 20; ++i) estimator.update(legs.at(i * dt), Side::Left, dt);
+  EXPECT_GT(estimator.rate().norm(), 0.01) << "moving";
+
+  estimator.update(legs.at(21 * dt), Side::Right, dt);
+  EXPECT_EQ(estimator.rate(), Eigen::Vector2d::Zero());
+  EXPECT_LT((estimator.estimate() -
+             estimator.com_from_foot(legs.sensors.joint_position, legs.sensors.imu_orientation, Side::Right).head<2>())
+                .norm(),
+            1e-12)
+      << "relative to the new stance foot";
+  estimator.update(legs.at(22 * dt), Side::Right, dt);
+  EXPECT_GT(estimator.rate().norm(), 0.0);
+
+  estimator.reset();
+  estimator.update(legs.at(23 * dt), Side::Right, dt);
+  EXPECT_EQ(estimator.rate(), Eigen::Vector2d::Zero());
+}
+
+// Once its filter (10 ms) has settled, the rate is the estimate's finite difference: the CoM's
+// velocity, here nearly constant. The filter lags it by its time constant, which costs only 10 ms
+// of the slow change of that velocity.
+TEST(CoMEstimator, RateFollowsACoMMovingAtConstantVelocity) {
+  const RobotModel model = test::load_model("lola");
+  CoMEstimator estimator(model);
+  LeaningLegs legs(model);
+  const double dt = 0.001;
+  Eigen::Vector2d previous = Eigen::Vector2d::Zero();
+  double worst = 0.0, speed = 0.0;
+  for (int i = 0; i <= 300; ++i) {
+    estimator.update(legs.at(i * dt), Side::Left, dt);
+    const Eigen::Vector2d difference = (estimator.estimate() - previous) / dt;
+    previous = estimator.estimate();
+    if (i < 150) continue;  // 15 filter time constants
+    worst = std::max(worst, (estimator.rate() - difference).norm());
+    speed = difference.norm();
+  }
+  EXPECT_GT(speed, 0.1) << "[m/s] the CoM moves";
+  EXPECT_LT(worst, 0.01 * speed);
+}
+
 }  // namespace
 }  // namespace biped

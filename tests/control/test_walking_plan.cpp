@@ -1,0 +1,265 @@
+// The walking plan (FSM, step sequence planner, pattern generator) advanced cycle by cycle on its
+// own, LOLA's model, default parameters (no step table: one step time): standing, the start, the
+// touchdowns and footholds, the first swing foot, the speed ramp, saturation, the stop and the
+// safe stop.
+#include "control/walking_plan.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <vector>
+
+#include "model/task_space.hpp"
+#include "test_support.hpp"
+
+namespace biped {
+namespace {
+
+constexpr double kDt = 0.001;
+
+WalkCommand walk(double vx, double vy = 0.0, double omega = 0.0) { return {vx, vy, omega, false}; }
+WalkCommand stop() { return {0.0, 0.0, 0.0, true}; }
+
+// A touchdown seen by the caller: the step the plan had listed first just before it, and the
+// time it was detected.
+struct Touchdown {
+  Footstep planned;
+  double t;
+  Eigen::Vector3d landed;  // the foot's position in the sample at that cycle
+  double landed_yaw;
+};
+
+// The plan reset on LOLA's feet and CoM in the stand pose, soles at z = 0 (as the controller does).
+struct PlanFixture {
+  RobotModel model = test::load_model("lola");
+  WalkingPlanParams params;
+  WalkingPlan plan{model, params};
+  std::array<Footstep, 2> feet;
+  double t = 0.0;
+  std::vector<Touchdown> touchdowns;
+
+  PlanFixture() {
+    const TaskSpace space(model);
+    TaskSpaceData data(space);
+    Eigen::VectorXd q = model.stand_qpos();
+    evaluate(space, q, Eigen::Matrix3d::Identity(), data);
+    const double ankle_height = plan.pattern_generator().params().ankle_height;
+    q[2] -= 0.5 * (data.foot_position[0].z() + data.foot_position[1].z()) - ankle_height;
+    evaluate(space, q, Eigen::Matrix3d::Identity(), data);
+    for (Side side : kSides) {
+      const int k = index_of(side);
+      feet[k] = {side, data.foot_position[k].head<2>(), 0.0, 0.0};
+    }
+    plan.reset(feet, data.com);
+  }
+  // Advances the plan until `until` with the command, noting each touchdown.
+  void run(double until, const WalkCommand& command, const std::function<void()>& each_cycle = [] {}) {
+    for (; t < until - 1e-9; t += kDt) {
+      const int before = plan.steps_completed();
+      const Footstep next = plan.num_planned_steps() > 0 ? plan.planned_step(0) : Footstep{};
+      plan.advance(t, command);
+      if (plan.steps_completed() > before) {
+        const FootReference& foot = plan.sample().feet[index_of(next.side)];
+        touchdowns.push_back({next, t, foot.position, foot.yaw});
+      }
+      each_cycle();
+    }
+  }
+  double step_time() const { return params.step.step_time; }
+  double step_width() const { return (feet[0].position - feet[1].position).norm(); }
+};
+
+// Side by side: the same heading, the line between the ankles square to it, a step width apart.
+void expect_side_by_side(const PatternSample& s, double width) {
+  EXPECT_TRUE(s.feet[0].in_contact && s.feet[1].in_contact);
+  EXPECT_NEAR(std::remainder(s.feet[0].yaw - s.feet[1].yaw, 2.0 * M_PI), 0.0, 1e-9);
+  const Eigen::Vector2d gap = (s.feet[0].position - s.feet[1].position).head<2>();
+  EXPECT_NEAR(gap.dot(Eigen::Vector2d(std::cos(s.feet[0].yaw), std::sin(s.feet[0].yaw))), 0.0, 1e-9);
+  EXPECT_NEAR(gap.norm(), width, 1e-9);
+}
+
+TEST(WalkingPlan, ZeroCommandKeepsStandingWithoutSteps) {
+  PlanFixture f;
+  f.run(3.0, walk(0.0), [&] {
+    ASSERT_EQ(f.plan.state(), WalkingState::Standing);
+    ASSERT_EQ(f.plan.num_planned_steps(), 0);
+    ASSERT_TRUE(f.plan.sample().feet[0].in_contact && f.plan.sample().feet[1].in_contact);
+  });
+  EXPECT_EQ(f.plan.steps_completed(), 0);
+  for (int k = 0; k < 2; ++k) {
+    EXPECT_LT((f.plan.sample().feet[k].position.head<2>() - f.feet[k].position).norm(), 1e-12);
+  }
+  EXPECT_FALSE(f.plan.command_saturated());
+}
+
+// From standing the first step touches down one step time plus the start shift after the
+// command; until its lift-off both feet stay down. Every touchdown comes at the time the plan
+// listed and puts the foot where it listed.
+TEST(WalkingPlan, ForwardCommandStartsAfterTheShiftAndLandsThePlannedSteps) {
+  PlanFixture f;
+  f.run(0.5, walk(0.0));
+  const double start = f.t;
+  f.run(0.5 + kDt, walk(0.3));
+  EXPECT_EQ(f.plan.state(), WalkingState::Starting);
+  ASSERT_EQ(f.plan.num_planned_steps(), 3);
+  const double first_touchdown = start + f.step_time() + f.params.start_shift;
+  EXPECT_NEAR(f.plan.planned_step(0).touchdown, first_touchdown, 1e-9);
+  const double liftoff = first_touchdown - f.step_time() * (1.0 - f.params.step.double_support_ratio);
+  f.run(liftoff - 2 * kDt, walk(0.3), [&] {
+    ASSERT_TRUE(f.plan.sample().feet[0].in_contact && f.plan.sample().feet[1].in_contact) << f.t;
+  });
+  f.run(6.0, walk(0.3));
+
+  ASSERT_GE(f.touchdowns.size(), 5u);
+  EXPECT_EQ(f.plan.state(), WalkingState::Walking);
+  EXPECT_EQ(f.plan.steps_completed(), static_cast<int>(f.touchdowns.size()));
+  EXPECT_NEAR(f.touchdowns[0].t, first_touchdown, kDt);
+  for (std::size_t i = 0; i < f.touchdowns.size(); ++i) {
+    const Touchdown& td = f.touchdowns[i];
+    EXPECT_GE(td.t, td.planned.touchdown - 1e-9) << "step " << i;
+    EXPECT_LT(td.t, td.planned.touchdown + kDt) << "step " << i;
+    EXPECT_LT((td.landed.head<2>() - td.planned.position).norm(), 1e-9) << "step " << i;
+    EXPECT_NEAR(td.landed_yaw, td.planned.yaw, 1e-9) << "step " << i;
+    if (i > 0) {
+      EXPECT_NE(td.planned.side, f.touchdowns[i - 1].planned.side) << "feet alternate";
+    }
+  }
+}
+
+struct FirstStep {
+  const char* name;
+  WalkCommand command;
+  Side first_swing;
+};
+void PrintTo(const FirstStep& c, std::ostream* os) { *os << c.name; }
+
+class WalkingPlanFirstStep : public ::testing::TestWithParam<FirstStep> {};
+
+// The first swing foot is on the side the robot moves or turns to (left for vy > 0, or ω > 0
+// without vy); otherwise the right.
+TEST_P(WalkingPlanFirstStep, SwingsTheFootOnTheSideOfTheMotion) {
+  PlanFixture f;
+  Side lifted = Side::Left;
+  bool seen = false;
+  f.run(2.0, GetParam().command, [&] {
+    for (Side side : kSides) {
+      if (!seen && !f.plan.sample().feet[index_of(side)].in_contact) {
+        lifted = side;
+        seen = true;
+      }
+    }
+  });
+  ASSERT_TRUE(seen);
+  EXPECT_EQ(name_of(lifted), name_of(GetParam().first_swing));
+  ASSERT_FALSE(f.touchdowns.empty());
+  EXPECT_EQ(name_of(f.touchdowns[0].planned.side), name_of(GetParam().first_swing));
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Commands, WalkingPlanFirstStep,
+    ::testing::Values(FirstStep{"forward", walk(0.3), Side::Right}, FirstStep{"backward", walk(-0.2), Side::Right},
+                      FirstStep{"left", walk(0.0, 0.1), Side::Left}, FirstStep{"right", walk(0.0, -0.1), Side::Right},
+                      FirstStep{"turn_left", walk(0.2, 0.0, 0.3), Side::Left},
+                      FirstStep{"turn_right", walk(0.2, 0.0, -0.3), Side::Right},
+                      FirstStep{"right_turning_left", walk(0.0, -0.1, 0.3), Side::Right}),
+    [](const ::testing::TestParamInfo<FirstStep>& info) { return std::string(info.param.name); });
+
+// Walking straight at a speed v, successive footholds advance by v × step time. From standing to
+// the limit and back to a stop, the gait's speed changes by at most vx_rate × step time per step,
+// and does change by that much (the ramp is what limits it).
+TEST(WalkingPlan, ForwardSpeedRampsByAtMostTheRatePerStep) {
+  PlanFixture f;
+  f.run(6.0, walk(f.params.limits.vx_max));
+  const std::size_t accelerating = f.touchdowns.size();
+  f.run(12.0, stop());
+  EXPECT_EQ(f.plan.state(), WalkingState::Standing);
+
+  const double max_change = f.params.limits.vx_rate * f.step_time();
+  double previous_x = f.feet[0].position.x(), previous_speed = 0.0, fastest = 0.0, largest_change = 0.0;
+  for (std::size_t i = 0; i < f.touchdowns.size(); ++i) {
+    const double x = f.touchdowns[i].planned.position.x();
+    const double speed = (x - previous_x) / f.step_time();
+    EXPECT_LE(std::abs(speed - previous_speed), max_change + 1e-9) << "step " << i;
+    largest_change = std::max(largest_change, std::abs(speed - previous_speed));
+    fastest = std::max(fastest, speed);
+    if (i + 1 == accelerating) {
+      EXPECT_NEAR(speed, f.params.limits.vx_max, 1e-9) << "reached the command";
+    }
+    previous_x = x;
+    previous_speed = speed;
+  }
+  EXPECT_NEAR(largest_change, max_change, 1e-9);
+  EXPECT_LE(fastest, f.params.limits.vx_max + 1e-9);
+  EXPECT_NEAR(previous_speed, 0.0, 1e-9) << "the last step puts the feet side by side";
+}
+
+TEST(WalkingPlan, CommandBeyondTheLimitsIsSaturatedAndSaysSo) {
+  const CommandLimits limits;
+  for (const WalkCommand& beyond : {walk(limits.vx_max + 1.0), walk(limits.vx_min - 0.1), walk(0.2, limits.vy_max + 0.1),
+                                    walk(0.2, -limits.vy_max - 0.1), walk(0.2, 0.0, -limits.omega_max - 0.1)}) {
+    PlanFixture f;
+    f.run(kDt, beyond);
+    EXPECT_TRUE(f.plan.command_saturated()) << beyond.vx << ' ' << beyond.vy << ' ' << beyond.omega;
+    f.run(2 * kDt, walk(0.2));
+    EXPECT_FALSE(f.plan.command_saturated());
+  }
+  // Held at five times the limit, the footholds advance no faster than the limit allows.
+  PlanFixture f;
+  f.run(8.0, walk(5.0 * limits.vx_max));
+  ASSERT_GE(f.touchdowns.size(), 4u);
+  for (std::size_t i = 1; i < f.touchdowns.size(); ++i) {
+    const double advance = f.touchdowns[i].planned.position.x() - f.touchdowns[i - 1].planned.position.x();
+    EXPECT_LE(advance, limits.vx_max * f.step_time() + 1e-9) << "step " << i;
+  }
+}
+
+TEST(WalkingPlan, StopPutsTheFeetSideBySideAndStands) {
+  PlanFixture f;
+  f.run(5.0, walk(0.4, 0.0, 0.2));
+  ASSERT_EQ(f.plan.state(), WalkingState::Walking);
+  f.run(10.0, stop());
+  EXPECT_EQ(f.plan.state(), WalkingState::Standing);
+  EXPECT_EQ(f.plan.num_planned_steps(), 0);
+  expect_side_by_side(f.plan.sample(), f.step_width());
+  const int steps = f.plan.steps_completed();
+  f.run(12.0, stop());
+  EXPECT_EQ(f.plan.steps_completed(), steps);
+}
+
+// A safe stop in mid-swing: the step under way lands where it was planned, one more step puts the
+// feet side by side, and no step follows, whatever the command says.
+TEST(WalkingPlan, SafeStopFinishesTheStepTakesOneMoreAndStands) {
+  PlanFixture f;
+  f.run(4.0, walk(0.4));
+  ASSERT_EQ(f.plan.state(), WalkingState::Walking);
+  while (f.plan.sample().feet[0].in_contact && f.plan.sample().feet[1].in_contact) f.run(f.t + kDt, walk(0.4));
+  const Footstep under_way = f.plan.planned_step(0);
+  const std::size_t before = f.touchdowns.size();
+  f.plan.enter_safe_stop();
+  f.run(12.0, walk(0.4));
+
+  EXPECT_EQ(f.plan.state(), WalkingState::SafeStop);
+  ASSERT_EQ(f.touchdowns.size(), before + 2);
+  const Touchdown& finished = f.touchdowns[before];
+  EXPECT_EQ(finished.planned.side, under_way.side);
+  EXPECT_NEAR(finished.t, under_way.touchdown, kDt);
+  EXPECT_LT((finished.landed.head<2>() - under_way.position).norm(), 1e-9);
+  EXPECT_EQ(f.touchdowns[before + 1].planned.side, other(under_way.side));
+  EXPECT_EQ(f.plan.num_planned_steps(), 0);
+  expect_side_by_side(f.plan.sample(), f.step_width());
+}
+
+// Entered while standing, the safe stop never starts a step.
+TEST(WalkingPlan, SafeStopFromStandingTakesNoStep) {
+  PlanFixture f;
+  f.plan.enter_safe_stop();
+  f.run(3.0, walk(0.4));
+  EXPECT_EQ(f.plan.state(), WalkingState::SafeStop);
+  EXPECT_EQ(f.plan.steps_completed(), 0);
+  EXPECT_EQ(f.plan.num_planned_steps(), 0);
+}
+
+}  // namespace
+}  // namespace biped

@@ -1,0 +1,145 @@
+// Running a scenario end to end: the controller the configuration names, names only the model can
+// resolve checked before anything runs, and the output files written whole, or not at all.
+#include "studies/scenario_runner.hpp"
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <set>
+#include <string>
+
+#include "io/yaml_reader.hpp"
+#include "test_support.hpp"
+
+namespace fs = std::filesystem;
+
+namespace biped {
+namespace {
+
+const std::string kWalk = test::source_path("config/scenarios/lola-walk.yaml");
+const std::string kFaultScenario = test::source_path("config/scenarios/lola-ft-nan.yaml");
+
+std::set<std::string> entries(const fs::path& dir) {
+  std::set<std::string> names;
+  for (const fs::directory_entry& e : fs::directory_iterator(dir)) names.insert(e.path().filename().string());
+  return names;
+}
+
+// The message of the InputError `f` throws ("" if it throws none).
+template <typename F>
+std::string input_error_of(F f) {
+  try {
+    f();
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+struct ControllerType {
+  const char* type;
+  bool (*is_it)(const Controller&);
+};
+void PrintTo(const ControllerType& c, std::ostream* os) { *os << c.type; }
+
+class MakeController : public ::testing::TestWithParam<ControllerType> {};
+
+TEST_P(MakeController, ReturnsTheTypeTheConfigurationNames) {
+  const Scenario s = load_scenario(kWalk, {std::string("controller.type=") + GetParam().type});
+  const RunConfig config = make_run_config(s);
+  const RobotModel model = load_controller_model(config);
+  const std::unique_ptr<Controller> controller = make_controller(config, model);
+  ASSERT_TRUE(controller);
+  EXPECT_TRUE(GetParam().is_it(*controller)) << GetParam().type;
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Types, MakeController,
+    ::testing::Values(
+        ControllerType{"walking", [](const Controller& c) { return dynamic_cast<const WalkingController*>(&c) != nullptr; }},
+        ControllerType{"standing", [](const Controller& c) { return dynamic_cast<const StandingController*>(&c) != nullptr; }},
+        ControllerType{"weight_shift",
+                       [](const Controller& c) { return dynamic_cast<const WeightShiftController*>(&c) != nullptr; }}),
+    [](const ::testing::TestParamInfo<ControllerType>& info) { return std::string(info.param.type); });
+
+TEST(CheckScenarioAgainstModel, AcceptsKnownSensorsAndBodies) {
+  const RobotModel model = test::load_model("lola");
+  for (const char* sensor : {"ft_left", "ft_right", "imu", "left_knee"}) {
+    const Scenario s = load_scenario(kFaultScenario, {std::string("sensors.faults.0.sensor=") + sensor});
+    EXPECT_NO_THROW(check_scenario_against_model(s, model)) << sensor;
+  }
+  const Scenario pushed =
+      load_scenario(kWalk, {"disturbances=[{type: push, t: 2.0, body: upper_body, force: [0, 50, 0]}]"});
+  EXPECT_NO_THROW(check_scenario_against_model(pushed, model));
+}
+
+// One line naming the file and the key at fault.
+TEST(CheckScenarioAgainstModel, RejectsAnUnknownFaultSensorNamingFileAndKey) {
+  const RobotModel model = test::load_model("lola");
+  const Scenario s = load_scenario(kFaultScenario, {"sensors.faults.0.sensor=left_kneee"});
+  const std::string message = input_error_of([&] { check_scenario_against_model(s, model); });
+  EXPECT_NE(message.find(kFaultScenario), std::string::npos) << message;
+  EXPECT_NE(message.find("sensors.faults.0.sensor"), std::string::npos) << message;
+  EXPECT_NE(message.find("left_kneee"), std::string::npos) << message;
+  EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+}
+
+TEST(CheckScenarioAgainstModel, RejectsAnUnknownPushBodyNamingFileAndKey) {
+  const RobotModel model = test::load_model("lola");
+  const Scenario s = load_scenario(kWalk, {"disturbances=[{type: push, t: 2.0, body: upper_body, force: [0, 50, 0]},"
+                                           " {type: push, t: 3.0, body: no_such_body, force: [50, 0, 0]}]"});
+  const std::string message = input_error_of([&] { check_scenario_against_model(s, model); });
+  EXPECT_NE(message.find(kWalk), std::string::npos) << message;
+  EXPECT_NE(message.find("disturbances.1.body"), std::string::npos) << message;
+  EXPECT_NE(message.find("no_such_body"), std::string::npos) << message;
+  EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+}
+
+TEST(RunScenario, WritesSummaryLogAndReportAndNoTemporaryFile) {
+  const fs::path dir = test::fresh_dir("scenario-runner") / "out";  // created by the run
+  const Scenario s = load_scenario(kWalk, {"duration=1"});
+  const ScenarioResult result = run_scenario(s, make_run_config(s), dir.string());
+  EXPECT_EQ(entries(dir), (std::set<std::string>{"log.csv", "report.html", "summary.json"}));
+
+  std::ifstream summary_file(dir / "summary.json");
+  const nlohmann::json summary = nlohmann::json::parse(summary_file);
+  EXPECT_EQ(summary, result.summary);
+  EXPECT_EQ(summary["scenario"], "lola-walk");
+  EXPECT_EQ(summary["controller"], "walking");
+
+  std::ifstream log(dir / "log.csv");
+  const auto lines = std::count(std::istreambuf_iterator<char>(log), std::istreambuf_iterator<char>(), '\n');
+  EXPECT_EQ(lines, 1 + 100) << "a header and 1 s at 100 Hz";
+  EXPECT_GT(fs::file_size(dir / "report.html"), 0u);
+  fs::remove_all(dir.parent_path());
+}
+
+// Without an output directory nothing is written, not even into the working directory.
+TEST(RunScenario, WithoutAnOutputDirectoryWritesNothing) {
+  const fs::path cwd = test::fresh_dir("scenario-runner-cwd");
+  const fs::path previous = fs::current_path();
+  fs::current_path(cwd);
+  const Scenario s = load_scenario(kWalk, {"duration=0.2"});
+  const ScenarioResult result = run_scenario(s, make_run_config(s), "");
+  fs::current_path(previous);
+  EXPECT_TRUE(fs::is_empty(cwd));
+  EXPECT_NEAR(result.summary["sim_time_s"].get<double>(), 0.2, 1e-9);
+  fs::remove_all(cwd);
+}
+
+// Bad input is found before the output directory or any file is created.
+TEST(RunScenario, BadInputCreatesNoOutput) {
+  const fs::path parent = test::fresh_dir("scenario-runner-bad");
+  const fs::path dir = parent / "out";
+  const Scenario s = load_scenario(kWalk, {"duration=1", "disturbances=[{type: push, t: 0.5, body: nowhere, force: [1, 0, 0]}]"});
+  const RunConfig config = make_run_config(s);
+  EXPECT_THROW(run_scenario(s, config, dir.string()), InputError);
+  EXPECT_TRUE(fs::is_empty(parent));
+  fs::remove_all(parent);
+}
+
+}  // namespace
+}  // namespace biped
