@@ -182,6 +182,15 @@ const ParameterTable<SensorLimits> kSensorLimitParameters = {
     {"encoder_margin", &SensorLimits::encoder_margin, "rad", kNonNegative, "out of range: encoder beyond the hard limits"},
     {"frozen_cycles", &SensorLimits::frozen_cycles, "", kNonNegative,
      "identical F/T or IMU readings in a row that mean a dead sensor (0: off)"},
+    {"encoder_jump", &SensorLimits::encoder_jump, "rad", kPositive,
+     "an encoder moving farther than this in one cycle has jumped"},
+    {"encoder_frozen_motion", &SensorLimits::encoder_frozen_motion, "rad", kPositive,
+     "an encoder identical for frozen_cycles while its set-point moved this far is frozen"},
+};
+
+const ParameterTable<WalkingControllerParams> kWalkingControllerParameters = {
+    {"fall_tilt_deg", Degrees<WalkingControllerParams>{&WalkingControllerParams::fall_tilt}, "deg", kPositive,
+     "walking controller: upper-body tilt (IMU) beyond recovery, the fallen state"},
 };
 
 const ParameterTable<TerrainAdaptationParams> kTerrainAdaptationParameters = {
@@ -220,6 +229,7 @@ ParameterSection controller_section(ControllerConfig& p) {
   WalkingControllerParams& w = p.walking;
   return {"controller",
           {{kControllerParameters, p},
+           {kWalkingControllerParameters, w},
            {kStepParameters, w.plan.step},
            {kWalkingPlanParameters, w.plan},
            {kRmrcParameters, w.rmrc},

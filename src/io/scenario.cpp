@@ -1,6 +1,7 @@
 #include "io/scenario.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 
 #include "io/parameter_table.hpp"
@@ -34,21 +35,70 @@ void read_commands(const YamlReader& r, const YAML::Node& root, Scenario& s) {
   }
 }
 
+// When: `t` (seconds) or `at` (a gait moment); how hard: `force` (world frame, N) or `direction_deg`
+// (heading frame: 0 forward, 90 left) with `impulse_Ns` or `force_N`; where: `body` and `point`.
+Push read_push(const YamlReader& r, const YAML::Node& d, const std::string& where) {
+  Push push;
+  push.duration = r.positive_or(d, where, "duration", 0.1);
+  if (d["t"] && d["at"]) r.fail(d["at"], where + ".at", "give either t or at, not both");
+  if (d["at"]) {
+    const YAML::Node at = r.mapping(d, where, "at");
+    const std::string w = where + ".at";
+    r.expect_keys(at, w, {"touchdown", "after", "phase"});
+    if (at["touchdown"].IsDefined() == at["after"].IsDefined()) {
+      r.fail(at, w, "needs exactly one of touchdown (a count) and after (a time)");
+    }
+    push.at_gait_moment = true;
+    if (at["touchdown"]) {
+      const long n = r.integer_or(at, w, "touchdown", 1);
+      if (n < 1) r.fail(at["touchdown"], w + ".touchdown", "must be at least 1");
+      push.moment.touchdown = static_cast<int>(n);
+    } else {
+      push.moment.after_time = r.non_negative_or(at, w, "after", 0.0);
+    }
+    push.moment.phase = r.non_negative_or(at, w, "phase", 0.5);
+    if (push.moment.phase > 1.0) r.fail(at["phase"], w + ".phase", "must be between 0 and 1 (share of the single support)");
+  } else {
+    if (!d["t"]) r.fail(d, where + ".t", "missing (required, or a gait moment `at`)");
+    push.t = r.non_negative_or(d, where, "t", 0.0);
+  }
+  push.body = r.text_or(d, where, "body", "upper_body");
+  if (d["point"]) {
+    push.at_point = true;
+    push.point = r.vector3(d, where, "point");
+  }
+  if (d["force"].IsDefined() == d["direction_deg"].IsDefined()) {
+    r.fail(d, where + ".force", "give either force [Fx, Fy, Fz] (world frame) or direction_deg with impulse_Ns or force_N");
+  }
+  if (d["force"]) {
+    if (d["impulse_Ns"] || d["force_N"]) {
+      r.fail(d["impulse_Ns"] ? d["impulse_Ns"] : d["force_N"], where + (d["impulse_Ns"] ? ".impulse_Ns" : ".force_N"),
+             "goes with direction_deg, not with force");
+    }
+    push.force = r.vector3(d, where, "force");
+    return push;
+  }
+  if (d["impulse_Ns"].IsDefined() == d["force_N"].IsDefined()) {
+    r.fail(d["direction_deg"], where + ".impulse_Ns", "direction_deg needs exactly one of impulse_Ns and force_N");
+  }
+  const double direction = r.number(d, where, "direction_deg") * M_PI / 180.0;
+  const double magnitude = d["impulse_Ns"] ? r.non_negative_or(d, where, "impulse_Ns", 0.0) / push.duration
+                                           : r.non_negative_or(d, where, "force_N", 0.0);
+  push.heading_frame = true;
+  push.force = magnitude * Eigen::Vector3d(std::cos(direction), std::sin(direction), 0.0);
+  return push;
+}
+
 void read_disturbances(const YamlReader& r, const YAML::Node& root, Scenario& s) {
   const YAML::Node list = r.sequence(root, "", "disturbances");
   for (std::size_t i = 0; i < list.size(); ++i) {
     const std::string where = item("disturbances", i);
     const YAML::Node d = list[i];
-    r.expect_keys(d, where, {"type", "t", "body", "force", "duration"});
+    r.expect_keys(d, where, {"type", "t", "at", "body", "point", "force", "direction_deg", "impulse_Ns", "force_N",
+                             "duration"});
     const std::string type = r.text(d, where, "type");
     if (type != "push") r.fail(d["type"], where + ".type", "unknown disturbance '" + type + "' (known: push)");
-    Push push;
-    push.t = r.non_negative_or(d, where, "t", 0.0);
-    if (!d["t"]) r.fail(d, where + ".t", "missing (required)");
-    push.body = r.text_or(d, where, "body", "upper_body");
-    push.force = r.vector3(d, where, "force");
-    push.duration = r.positive_or(d, where, "duration", 0.1);
-    s.pushes.push_back(push);
+    s.pushes.push_back(read_push(r, d, where));
   }
 }
 

@@ -239,6 +239,63 @@ TEST(Scenario, RobotFileSensorsSectionIsChecked) {
   std::filesystem::remove_all(dir);
 }
 
+// Pushes in any direction (an angle in the heading frame, or a world-frame vector), on any body and
+// point, timed by the clock or by a gait moment.
+TEST(Scenario, PushesTakeAnAngleOrAVectorAndATimeOrAGaitMoment) {
+  const Scenario s = load_scenario(write_scenario("pushes", R"(robot: lola
+duration: 5
+disturbances:
+  - {type: push, at: {touchdown: 3, phase: 0.25}, direction_deg: 90, impulse_Ns: 12, duration: 0.1}
+  - {type: push, at: {after: 2.5}, direction_deg: 180, force_N: 50, body: pelvis, point: [0.1, 0, 0.2]}
+  - {type: push, t: 1.5, force: [10, 20, 0]}
+)"));
+  ASSERT_EQ(s.pushes.size(), 3u);
+  const Push& a = s.pushes[0];
+  EXPECT_TRUE(a.at_gait_moment);
+  EXPECT_EQ(a.moment.touchdown, 3);
+  EXPECT_DOUBLE_EQ(a.moment.phase, 0.25);
+  EXPECT_TRUE(a.heading_frame);
+  EXPECT_NEAR((a.force - Eigen::Vector3d(0.0, 120.0, 0.0)).norm(), 0.0, 1e-12) << "12 N·s over 0.1 s, to the left";
+  const Push& b = s.pushes[1];
+  EXPECT_DOUBLE_EQ(b.moment.after_time, 2.5);
+  EXPECT_DOUBLE_EQ(b.moment.phase, 0.5) << "the middle of the single support by default";
+  EXPECT_NEAR((b.force - Eigen::Vector3d(-50.0, 0.0, 0.0)).norm(), 0.0, 1e-12);
+  EXPECT_EQ(b.body, "pelvis");
+  EXPECT_TRUE(b.at_point);
+  EXPECT_EQ(b.point, Eigen::Vector3d(0.1, 0.0, 0.2));
+  const Push& c = s.pushes[2];
+  EXPECT_FALSE(c.at_gait_moment);
+  EXPECT_FALSE(c.heading_frame);
+  EXPECT_DOUBLE_EQ(c.t, 1.5);
+  EXPECT_FALSE(c.at_point) << "at the body's CoM by default";
+}
+
+TEST(Scenario, BadPushesNameTheKey) {
+  auto error = [](const std::string& push) { return error_of("robot: lola\nduration: 1\ndisturbances:\n  - " + push + "\n"); };
+  EXPECT_NE(error("{type: push, t: 1, at: {touchdown: 1}, force: [1, 0, 0]}").find("key 'disturbances.0.at'"), std::string::npos);
+  EXPECT_NE(error("{type: push, force: [1, 0, 0]}").find("key 'disturbances.0.t': missing"), std::string::npos);
+  EXPECT_NE(error("{type: push, at: {touchdown: 0}, force: [1, 0, 0]}").find("key 'disturbances.0.at.touchdown'"),
+            std::string::npos);
+  EXPECT_NE(error("{type: push, at: {touchdown: 1, after: 2}, force: [1, 0, 0]}").find("key 'disturbances.0.at'"),
+            std::string::npos);
+  EXPECT_NE(error("{type: push, at: {after: 1, phase: 1.5}, force: [1, 0, 0]}").find("key 'disturbances.0.at.phase'"),
+            std::string::npos);
+  EXPECT_NE(error("{type: push, at: {after: 1, fase: 0.5}, force: [1, 0, 0]}").find("key 'disturbances.0.at.fase'"),
+            std::string::npos);
+  EXPECT_NE(error("{type: push, t: 1}").find("key 'disturbances.0.force'"), std::string::npos);
+  EXPECT_NE(error("{type: push, t: 1, force: [1, 0, 0], direction_deg: 90}").find("key 'disturbances.0.force'"),
+            std::string::npos);
+  EXPECT_NE(error("{type: push, t: 1, direction_deg: 90}").find("key 'disturbances.0.impulse_Ns'"), std::string::npos);
+  EXPECT_NE(error("{type: push, t: 1, direction_deg: 90, impulse_Ns: -3}").find("key 'disturbances.0.impulse_Ns'"),
+            std::string::npos);
+  EXPECT_NE(error("{type: push, t: 1, force: [1, 0, 0], impulse_Ns: 3}").find("key 'disturbances.0.impulse_Ns'"),
+            std::string::npos);
+  EXPECT_NE(error("{type: push, t: 1, force: [1, 0, 0], point: [1, 2]}").find("key 'disturbances.0.point'"),
+            std::string::npos);
+  EXPECT_NE(error("{type: push, t: 1, direction_deg: x, force_N: 3}").find("key 'disturbances.0.direction_deg'"),
+            std::string::npos);
+}
+
 TEST(Scenario, MissingFileIsBadInput) {
   EXPECT_THROW(load_scenario("/nonexistent/scenario.yaml"), InputError);
 }
