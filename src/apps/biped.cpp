@@ -131,12 +131,11 @@ int bench_command(const std::string& robot, const std::string& json_path, double
   return 0;
 }
 
-int push_test_command(const std::string& scenario_path, const std::string& direction,
+int push_test_command(const std::string& scenario_path, biped::PushTestOptions options,
                       const std::vector<std::string>& overrides) {
   const biped::Scenario scenario = biped::load_scenario(scenario_path, overrides);
   const biped::RunConfig config = biped::make_run_config(scenario);
-  biped::PushTestOptions options;
-  options.direction = direction;
+  options.progress = &std::cerr;
   std::printf("%s\n", biped::run_push_test(scenario, config, options).dump().c_str());
   return 0;
 }
@@ -199,11 +198,19 @@ int main(int argc, char** argv) {
   bench->add_option("--json", bench_json, "Write the figures as JSON");
   bench->add_option("--duration", bench_duration, "Simulated seconds")->capture_default_str()->check(CLI::Range(1.0, 600.0));
 
-  std::string push_scenario, push_direction;
+  std::string push_scenario;
   std::vector<std::string> push_overrides;
+  biped::PushTestOptions push_options;
+  double push_direction_deg = 0.0;
   CLI::App* push = app.add_subcommand("push-test", "Largest 0.1 s push impulse survived, by bisection to 1 N·s");
   push->add_option("scenario", push_scenario, "Scenario file (YAML)")->required();
-  push->add_option("--direction", push_direction, "forward | backward | left | right")->required();
+  CLI::Option* named = push->add_option("--direction", push_options.direction, "forward | backward | left | right");
+  CLI::Option* angle =
+      push->add_option("--direction-deg", push_direction_deg, "Direction in the robot's heading frame (0 forward, 90 left)");
+  named->excludes(angle);
+  push->add_option("--phase", push_options.phase, "Share of the single support at the push (0..1)")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 1.0));
   push->add_option("--set", push_overrides, "Override a scenario key")->type_name("KEY=VALUE");
 
   std::string sweep_scenario, sweep_json;
@@ -236,15 +243,20 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    const int code = app.exit(e);
-    return code == 0 ? 0 : kExitBadInput;
+    if (e.get_exit_code() == 0) return app.exit(e);  // --help
+    std::cerr << "error: " << e.what() << " (biped --help)\n";
+    return kExitBadInput;
   }
 
   try {
     if (*run) return run_command(scenario_path, out_dir, overrides, video, video_size);
     if (*tables) return tables_command(robot, table_out);
     if (*bench) return bench_command(bench_robot, bench_json, bench_duration);
-    if (*push) return push_test_command(push_scenario, push_direction, push_overrides);
+    if (*push) {
+      if (push->count("--direction-deg") > 0) push_options.direction_deg = push_direction_deg;
+      else if (push->count("--direction") == 0) throw biped::InputError("push-test: give --direction or --direction-deg");
+      return push_test_command(push_scenario, push_options, push_overrides);
+    }
     if (*sweep) return speed_sweep_command(sweep_scenario, sweep_options, sweep_overrides, sweep_json);
     if (*params) return params_command(params_markdown);
   } catch (const biped::InputError& e) {

@@ -35,6 +35,7 @@ RunRecorder::RunRecorder(const Simulation& sim, std::ostream* csv) : csv_(csv) {
     const std::string p = name_of(side);
     o << ',' << p << "_foot_x," << p << "_foot_z," << p << "_foot_pitch_deg," << p << "_terrain_dz," << p << "_terrain_tilt_deg";
   }
+  o << ",imu_phi_x_deg,imu_phi_y_deg";
   for (int i = 0; i < sim.plant().mj()->nq; ++i) o << ",qpos_" << i;
   o << '\n';
 }
@@ -108,6 +109,10 @@ void RunRecorder::record(const Simulation& sim, const SensorData& sensors, const
                   status.foot_height_offset[index_of(side)], status.foot_tilt[index_of(side)] * kRadToDeg);
     o << line_;
   }
+  // The upper body's tilt as the controller's IMU reading has it (attitude filter, errors, delay).
+  const math::TiltAngles measured = math::tilt_against_gravity(sensors.imu_orientation.toRotationMatrix());
+  std::snprintf(line_, sizeof(line_), ",%.4f,%.4f", measured.sagittal * kRadToDeg, measured.lateral * kRadToDeg);
+  o << line_;
   for (int i = 0; i < m->nq; ++i) {
     std::snprintf(line_, sizeof(line_), ",%.7g", d->qpos[i]);
     o << line_;
