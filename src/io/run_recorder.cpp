@@ -35,7 +35,7 @@ RunRecorder::RunRecorder(const Simulation& sim, std::ostream* csv) : csv_(csv) {
     const std::string p = name_of(side);
     o << ',' << p << "_foot_x," << p << "_foot_z," << p << "_foot_pitch_deg," << p << "_terrain_dz," << p << "_terrain_tilt_deg";
   }
-  o << ",imu_phi_x_deg,imu_phi_y_deg";
+  o << ",imu_phi_x_deg,imu_phi_y_deg,est_phi_x_deg,est_phi_y_deg";
   for (int i = 0; i < sim.plant().mj()->nq; ++i) o << ",qpos_" << i;
   o << '\n';
 }
@@ -113,6 +113,10 @@ void RunRecorder::record(const Simulation& sim, const SensorData& sensors, const
   const math::TiltAngles measured = math::tilt_against_gravity(sensors.imu_orientation.toRotationMatrix());
   std::snprintf(line_, sizeof(line_), ",%.4f,%.4f", measured.sagittal * kRadToDeg, measured.lateral * kRadToDeg);
   o << line_;
+  // ... and as the controller uses it (after its sensor calibration).
+  std::snprintf(line_, sizeof(line_), ",%.4f,%.4f", status.upper_body_tilt[0] * kRadToDeg,
+                status.upper_body_tilt[1] * kRadToDeg);
+  o << line_;
   for (int i = 0; i < m->nq; ++i) {
     std::snprintf(line_, sizeof(line_), ",%.7g", d->qpos[i]);
     o << line_;
@@ -162,6 +166,14 @@ nlohmann::json RunRecorder::summary(const std::string& robot, const std::string&
   j["fault_after_fall"] = text_if(fault && after_fall);
   j["fault_time_s"] = fault && fault_seen_ ? nlohmann::json(fault_time_) : nlohmann::json(nullptr);
   j["command_saturated"] = command_saturated_;
+  // What the controller's sensor calibration estimated (all zero with it off).
+  const auto vec = [](const Eigen::Vector3d& v, double scale) { return nlohmann::json{v.x() * scale, v.y() * scale, v.z() * scale}; };
+  j["calibration"] = {{"imu_misalignment_deg", vec(final_status.imu_misalignment, kRadToDeg)},
+                      {"gyro_bias_rad_s", vec(final_status.gyro_bias, 1.0)},
+                      {"ft_offset_left", {{"force", vec(final_status.ft_offset[0].force, 1.0)},
+                                          {"torque", vec(final_status.ft_offset[0].torque, 1.0)}}},
+                      {"ft_offset_right", {{"force", vec(final_status.ft_offset[1].force, 1.0)},
+                                           {"torque", vec(final_status.ft_offset[1].torque, 1.0)}}}};
   return j;
 }
 

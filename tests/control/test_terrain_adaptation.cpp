@@ -200,7 +200,11 @@ struct LargestOffset final : public RunObserver {
 // these were accounted for, ends 2 cm off (measured: 2.2 cm after 10 s). Ideal sensors: with the
 // realistic sensor errors the footholds drift by 4.7 cm in this walk (README "Status").
 TEST(TerrainAdaptation, FlatGroundFootholdsStayAtTheGroundsHeight) {
-  const Scenario s = load_scenario(test::source_path("config/scenarios/lola-walk.yaml"), {"sensors.ideal=true"});
+  // Exact sensors leave the sensor calibration nothing to remove; switched on, its start-up estimate
+  // takes the feet's settling pitch (0.1–0.2°, the soles' compliance) for an IMU misalignment of
+  // 0.16°, and the footholds then drift by 8 cm in 20 s (docs/stabilizer.md, sensor calibration).
+  const Scenario s = load_scenario(test::source_path("config/scenarios/lola-walk.yaml"),
+                                   {"sensors.ideal=true", "controller.calibration.enabled=false"});
   LargestOffset observer;
   const ScenarioResult result = run_scenario(s, make_run_config(s), "", &observer);
   ASSERT_FALSE(result.run.fell);
