@@ -201,6 +201,23 @@ const ParameterTable<TerrainAdaptationParams> kTerrainAdaptationParameters = {
     {"max_tilt", &TerrainAdaptationParams::max_tilt, "rad", kPositive, "partial support: bound of a foot's tilt"},
 };
 
+const ParameterTable<StepAdaptationParams> kStepAdaptationParameters = {
+    {"enabled", &StepAdaptationParams::enabled, "", {}, "step adaptation from the measured DCM (with the stabilizer)"},
+    {"gain", &StepAdaptationParams::gain, "", kNonNegative, "share of the DCM error predicted at touchdown taken up by the step"},
+    {"cop_reach_share", &StepAdaptationParams::cop_reach_share, "", kNonNegative,
+     "share of the stance sole's CoP reach counted on to absorb a DCM error before a step is shifted"},
+    {"max_forward", &StepAdaptationParams::max_forward, "m", kNonNegative, "largest shift of a landing point forward"},
+    {"max_backward", &StepAdaptationParams::max_backward, "m", kNonNegative, "... backward"},
+    {"max_outward", &StepAdaptationParams::max_outward, "m", kNonNegative, "... sideways away from the stance foot"},
+    {"max_inward", &StepAdaptationParams::max_inward, "m", kNonNegative, "... sideways towards the stance foot"},
+    {"min_width", &StepAdaptationParams::min_width, "m", kPositive, "the feet's centres stay this far apart sideways"},
+    {"filter_time", &StepAdaptationParams::filter_time, "s", kNonNegative, "filter of the landing point's shift"},
+    {"max_rate", &StepAdaptationParams::max_rate, "m/s", kPositive, "the landing point moves at most this fast"},
+    {"freeze_time", &StepAdaptationParams::freeze_time, "s", kNonNegative, "the landing point is held this long before touchdown"},
+    {"replan_threshold", &StepAdaptationParams::replan_threshold, "m", kNonNegative,
+     "at a touchdown the pattern restarts from the measured CoM when the DCMs differ by more"},
+};
+
 ParameterSection simulation_section(SimulationParams& p) {
   return {"simulation",
           {{kWorldParameters, p.world}, {kSimulationParameters, p}, {kSoleContactParameters, p.sole_contact}},
@@ -221,7 +238,8 @@ ParameterSection controller_section(ControllerConfig& p) {
            {kRmrcParameters, w.rmrc},
            {kStandingParameters, p.standing},
            {kWeightShiftParameters, p.weight_shift}},
-          {"type", "model", "stance", "step_table", "limits", "stabilization", "sensor_limits", "terrain_adaptation"}};
+          {"type", "model", "stance", "step_table", "limits", "stabilization", "sensor_limits", "terrain_adaptation",
+           "step_adaptation"}};
 }
 ParameterSection command_limits_section(CommandLimits& p) {
   return {"controller.limits", {{kCommandLimitParameters, p}}, {}};
@@ -234,6 +252,9 @@ ParameterSection sensor_limits_section(SensorLimits& p) {
 }
 ParameterSection terrain_adaptation_section(TerrainAdaptationParams& p) {
   return {"controller.terrain_adaptation", {{kTerrainAdaptationParameters, p}}, {}};
+}
+ParameterSection step_adaptation_section(StepAdaptationParams& p) {
+  return {"controller.step_adaptation", {{kStepAdaptationParameters, p}}, {}};
 }
 
 void read_simulation(const YamlReader& r, const YAML::Node& sim, SimulationParams& p) {
@@ -291,6 +312,7 @@ void read_controller(const YamlReader& r, const YAML::Node& c, ControllerConfig&
   read_stabilization(r, r.mapping(c, "controller", "stabilization"), w.stabilization);
   read_section(r, r.mapping(c, "controller", "sensor_limits"), sensor_limits_section(w.sensor_limits));
   read_section(r, r.mapping(c, "controller", "terrain_adaptation"), terrain_adaptation_section(w.terrain));
+  read_section(r, r.mapping(c, "controller", "step_adaptation"), step_adaptation_section(w.step_adaptation));
 }
 
 void read_robot_file(const std::string& file, RunConfig& config) {
@@ -341,7 +363,8 @@ std::vector<ParameterDoc> parameter_reference() {
   return document_sections({simulation_section(sim), drives_section(sim.drives), encoders_section(sim),
                             sensor_noise_section(sim.noise_levels), controller_section(controller),
                             command_limits_section(w.plan.limits), stabilization_section(w.stabilization),
-                            sensor_limits_section(w.sensor_limits), terrain_adaptation_section(w.terrain)});
+                            sensor_limits_section(w.sensor_limits), terrain_adaptation_section(w.terrain),
+                            step_adaptation_section(w.step_adaptation)});
 }
 
 RunConfig make_run_config(const Scenario& s) {

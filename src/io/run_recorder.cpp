@@ -35,6 +35,7 @@ RunRecorder::RunRecorder(const Simulation& sim, std::ostream* csv) : csv_(csv) {
     const std::string p = name_of(side);
     o << ',' << p << "_foot_x," << p << "_foot_z," << p << "_foot_pitch_deg," << p << "_terrain_dz," << p << "_terrain_tilt_deg";
   }
+  o << ",dcm_error_x,dcm_error_y,landing_shift_x,landing_shift_y";
   for (int i = 0; i < sim.plant().mj()->nq; ++i) o << ",qpos_" << i;
   o << '\n';
 }
@@ -100,6 +101,9 @@ void RunRecorder::record(const Simulation& sim, const SensorData& sensors, const
                   status.foot_height_offset[index_of(side)], status.foot_tilt[index_of(side)] * kRadToDeg);
     o << line_;
   }
+  std::snprintf(line_, sizeof(line_), ",%.5f,%.5f,%.5f,%.5f", status.dcm_error.x(), status.dcm_error.y(),
+                status.landing_shift.x(), status.landing_shift.y());
+  o << line_;
   for (int i = 0; i < m->nq; ++i) {
     std::snprintf(line_, sizeof(line_), ",%.7g", d->qpos[i]);
     o << line_;
