@@ -1,5 +1,6 @@
 #include "studies/scenario_runner.hpp"
 
+#include <algorithm>
 #include <filesystem>
 #include <utility>
 #include <vector>
@@ -49,9 +50,19 @@ std::unique_ptr<Controller> make_controller(const RunConfig& config, const Robot
 void check_scenario_against_model(const Scenario& s, const RobotModel& model) {
   for (std::size_t i = 0; i < s.faults.size(); ++i) {
     const std::string& name = s.faults[i].sensor;
-    if (name != "ft_left" && name != "ft_right" && name != "imu" && model.joint_index(name) < 0) {
+    const bool known = std::find(kNonJointSensors.begin(), kNonJointSensors.end(), name) != kNonJointSensors.end();
+    if (!known && model.joint_index(name) < 0) {
       throw InputError(s.file + ": key 'sensors.faults." + std::to_string(i) + ".sensor': unknown sensor '" + name +
-                       "' (ft_left, ft_right, imu, or a joint name)");
+                       "' (ft_left, ft_right, imu, imu_orientation, imu_gyro, imu_accel, or a joint name)");
+    }
+  }
+  // Absent keys give invalid nodes, which only say false.
+  const YAML::Node encoders = s.sensors && s.sensors.IsMap() ? s.sensors["encoders"] : YAML::Node();
+  const YAML::Node offsets = encoders && encoders.IsMap() ? encoders["offset_deg"] : YAML::Node();
+  for (const auto& entry : offsets) {
+    const std::string joint = entry.first.Scalar();
+    if (model.joint_index(joint) < 0) {
+      throw InputError(s.file + ": key 'sensors.encoders.offset_deg." + joint + "': unknown joint '" + joint + "'");
     }
   }
   for (std::size_t i = 0; i < s.pushes.size(); ++i) {
