@@ -62,12 +62,20 @@ void RunRecorder::record(const Simulation& sim, const SensorData& sensors, const
   final_yaw_ = yaw;
   max_tilt_ = std::max(max_tilt_, math::tilt_from_vertical(upper_body));
   samples_.push_back({d->time, base[2], tilt.sagittal, tilt.lateral});
+  const bool fallen = sim.fall_reason() != nullptr;
+  if (status.fault && !fault_seen_) {
+    fault_seen_ = true;
+    fault_time_ = d->time;
+    fault_after_fall_ = fallen;
+  }
+  command_saturated_ = command_saturated_ || status.command_saturated;
+  // Steps end at the fall: a fallen robot's feet bouncing on the ground are not steps.
   for (Side side : kSides) {
     const int k = index_of(side);
     const double force = sim.foot_contact_force(side);
     if (!in_contact_[k] && force > kContactOnN) {
       in_contact_[k] = true;
-      ++touchdowns_;
+      if (!fallen) ++touchdowns_;
     } else if (in_contact_[k] && force < kContactOffN) {
       in_contact_[k] = false;
     }
@@ -149,7 +157,15 @@ nlohmann::json RunRecorder::summary(const std::string& robot, const std::string&
                                                               : *std::max_element(result.cycle_us.begin(),
                                                                                   result.cycle_us.end())}};
   j["final_state"] = final_status.state;
-  j["fault"] = final_status.fault ? nlohmann::json(describe(final_status.first_fault)) : nlohmann::json(nullptr);
+  // A fall's impact trips the controller's sensor checks (typically the IMU's acceleration): such a
+  // fault is a consequence, not the cause, and is reported apart.
+  const bool fault = final_status.fault;
+  const bool after_fall = fault_seen_ ? fault_after_fall_ : result.fell;  // not logged yet: at the very end
+  const auto text_if = [&](bool b) { return b ? nlohmann::json(describe(final_status.first_fault)) : nlohmann::json(nullptr); };
+  j["fault"] = text_if(fault && !after_fall);
+  j["fault_after_fall"] = text_if(fault && after_fall);
+  j["fault_time_s"] = fault && fault_seen_ ? nlohmann::json(fault_time_) : nlohmann::json(nullptr);
+  j["command_saturated"] = command_saturated_;
   return j;
 }
 

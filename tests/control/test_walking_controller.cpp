@@ -259,7 +259,8 @@ TEST_P(WalkingControllerTest, ArmsSwingAgainstTheLegs) {
   EXPECT_EQ(agreeing, samples);
 }
 
-INSTANTIATE_TEST_SUITE_P(Robots, WalkingControllerTest, ::testing::Values("lola", "johnnie"));
+INSTANTIATE_TEST_SUITE_P(Robots, WalkingControllerTest, ::testing::Values("lola", "johnnie"),
+                         [](const ::testing::TestParamInfo<std::string>& info) { return info.param; });
 
 }  // namespace
 }  // namespace biped
