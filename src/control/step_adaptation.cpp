@@ -30,9 +30,10 @@ void StepAdaptation::update(double dt, const StepAdaptationInput& in) {
   const double s = params_.cop_reach_share;
   const std::array<double, 2> reach_plus = {s * in.cop_forward, s * in.cop_sideways};
   const std::array<double, 2> reach_minus = {s * in.cop_backward, s * in.cop_sideways};
+  const std::array<double, 2> dead_band = {params_.dead_band_forward, params_.dead_band_sideways};
   Eigen::Vector2d target = Eigen::Vector2d::Zero();
   for (int a = 0; a < 2; ++a) {
-    const double e = dcm_error_[a];
+    const double e = std::copysign(std::max(0.0, std::abs(dcm_error_[a]) - dead_band[a]), dcm_error_[a]);
     const double cop_shift = std::clamp(e / absorbable, -reach_minus[a], reach_plus[a]);
     const double left = (e - cop_shift) * growth + cop_shift;
     if (std::abs(e) > std::abs(cop_shift) * absorbable + 1e-12) target[a] = params_.gain * left;

@@ -17,11 +17,17 @@
 namespace biped {
 
 struct StepAdaptationParams {
-  bool enabled = true;
+  // Off by default: with the realistic sensor errors it does not yet help (docs/stabilizer.md,
+  // "Step adaptation": pushes and random joystick timelines, on against off).
+  bool enabled = false;
   double gain = 1.0;             // share of the DCM error left at touchdown taken up by the step
   // [-] share of the CoP's reach in the stance sole counted on for absorbing the DCM error (the rest
   // is kept for the stabilizer's balancing of the remaining motion)
   double cop_reach_share = 0.5;
+  // [m] DCM errors up to these (along the heading, sideways) are the state estimate's own scatter in
+  // undisturbed walking and are left to the stabilizer; only the part beyond them moves a step.
+  double dead_band_forward = 0.06;
+  double dead_band_sideways = 0.04;
   double max_forward = 0.15;     // [m] shift of the landing point along the heading, forward ...
   double max_backward = 0.10;    // [m] ... and backward
   double max_outward = 0.10;     // [m] sideways, away from the stance foot ...

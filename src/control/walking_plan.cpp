@@ -22,6 +22,8 @@ void WalkingPlan::reset(const std::array<Footstep, 2>& feet, const Eigen::Vector
   feet_ = feet;
   num_planned_ = 0;
   planned_vx_ = 0.0;
+  planned_vy_ = 0.0;
+  planned_omega_ = 0.0;
   command_saturated_ = false;
   steps_completed_ = 0;
   landing_shift_.setZero();
@@ -85,11 +87,12 @@ void WalkingPlan::shift_landing(const Eigen::Vector2d& shift, const Eigen::Vecto
 
 void WalkingPlan::replan(double t, StepDecision decision, const VelocityCommand& command) {
   if (decision == StepDecision::None) return;
-  VelocityCommand v = command;
-  planned_vx_ = decision == StepDecision::StartWalk || decision == StepDecision::Continue
-                    ? ramp_towards(planned_vx_, command.vx, max_speed_change())
-                    : 0.0;
-  v.vx = planned_vx_;
+  const bool walking = decision == StepDecision::StartWalk || decision == StepDecision::Continue;
+  const double step_time = params_.table.lookup(planned_vx_, step_).step_time;
+  planned_vx_ = walking ? ramp_towards(planned_vx_, command.vx, max_speed_change()) : 0.0;
+  planned_vy_ = walking ? ramp_towards(planned_vy_, command.vy, params_.limits.vy_rate * step_time) : 0.0;
+  planned_omega_ = walking ? ramp_towards(planned_omega_, command.omega, params_.limits.omega_rate * step_time) : 0.0;
+  const VelocityCommand v{planned_vx_, planned_vy_, planned_omega_};
   PatternSample now;
   pattern_.sample(t, now);
   if (measured_valid_) {

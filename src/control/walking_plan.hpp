@@ -60,7 +60,7 @@ class WalkingPlan {
   double max_speed_change() const;
 
  private:
-  // Plans with the command's vx ramped from planned_vx_ (StartWalk, Continue).
+  // Plans with the command's vx, vy and ω ramped from the current plan's (StartWalk, Continue).
   void replan(double t, StepDecision decision, const VelocityCommand& command);
 
   WalkingPlanParams params_;
@@ -71,6 +71,8 @@ class WalkingPlan {
   std::array<Footstep, kMaxSteps> planned_;   // steps of the current plan
   int num_planned_ = 0;
   double planned_vx_ = 0.0;                   // forward speed of the current plan (ramped, limits.vx_rate)
+  double planned_vy_ = 0.0;                   // its sideways speed (ramped, limits.vy_rate)
+  double planned_omega_ = 0.0;                // its turn rate (ramped, limits.omega_rate)
   PatternSample sample_;
   Eigen::Vector2d landing_shift_ = Eigen::Vector2d::Zero(), landing_shift_rate_ = Eigen::Vector2d::Zero();
   Eigen::Vector2d measured_com_ = Eigen::Vector2d::Zero(), measured_com_velocity_ = Eigen::Vector2d::Zero();

@@ -130,6 +130,9 @@ const ParameterTable<CommandLimits> kCommandLimitParameters = {
      "the gait's forward speed changes by at most this × step time per step"},
     {"vy_max", &CommandLimits::vy_max, "m/s", kNonNegative, "sideways speed, either side"},
     {"omega_max", &CommandLimits::omega_max, "rad/s", kNonNegative, "turn rate, either side"},
+    {"vy_rate", &CommandLimits::vy_rate, "m/s²", kPositive, "the gait's sideways speed changes by at most this × step time per step"},
+    {"omega_rate", &CommandLimits::omega_rate, "rad/s²", kPositive,
+     "the gait's turn rate changes by at most this × step time per step"},
 };
 
 const ParameterTable<StabilizerParams> kStabilizerParameters = {
@@ -220,6 +223,9 @@ const ParameterTable<StepAdaptationParams> kStepAdaptationParameters = {
     {"gain", &StepAdaptationParams::gain, "", kNonNegative, "share of the DCM error predicted at touchdown taken up by the step"},
     {"cop_reach_share", &StepAdaptationParams::cop_reach_share, "", kNonNegative,
      "share of the stance sole's CoP reach counted on to absorb a DCM error before a step is shifted"},
+    {"dead_band_forward", &StepAdaptationParams::dead_band_forward, "m", kNonNegative,
+     "DCM error along the heading left to the stabilizer (the estimate's scatter in undisturbed walking)"},
+    {"dead_band_sideways", &StepAdaptationParams::dead_band_sideways, "m", kNonNegative, "... sideways"},
     {"max_forward", &StepAdaptationParams::max_forward, "m", kNonNegative, "largest shift of a landing point forward"},
     {"max_backward", &StepAdaptationParams::max_backward, "m", kNonNegative, "... backward"},
     {"max_outward", &StepAdaptationParams::max_outward, "m", kNonNegative, "... sideways away from the stance foot"},

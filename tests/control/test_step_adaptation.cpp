@@ -21,6 +21,15 @@ StepAdaptationInput mid_swing() {
   return in;
 }
 
+// Switched on, without the dead band (its own test below), so that the capture criterion shows.
+StepAdaptationParams switched_on() {
+  StepAdaptationParams params;
+  params.enabled = true;
+  params.dead_band_forward = 0.0;
+  params.dead_band_sideways = 0.0;
+  return params;
+}
+
 // Runs the adaptation long enough for its filter to settle on a constant input.
 Eigen::Vector2d settle(StepAdaptation& adaptation, const StepAdaptationInput& in, int cycles = 2000) {
   for (int k = 0; k < cycles; ++k) adaptation.update(kDt, in);
@@ -37,13 +46,13 @@ double predicted_shift(double dcm_error, double reach, double time_to_touchdown,
 }
 
 TEST(StepAdaptation, NoErrorNoShift) {
-  StepAdaptation adaptation{StepAdaptationParams{}};
+  StepAdaptation adaptation{switched_on()};
   EXPECT_EQ(settle(adaptation, mid_swing()), Eigen::Vector2d::Zero());
 }
 
 // The DCM error is measured − planned of c + ċ/ω₀.
 TEST(StepAdaptation, DcmErrorCombinesPositionAndRate) {
-  StepAdaptation adaptation{StepAdaptationParams{}};
+  StepAdaptation adaptation{switched_on()};
   StepAdaptationInput in = mid_swing();
   in.measured_com = {0.01, -0.02};
   in.measured_com_rate = {0.1, 0.05};
@@ -56,7 +65,7 @@ TEST(StepAdaptation, DcmErrorCombinesPositionAndRate) {
 
 // An error the stance sole's centre of pressure can take up by touchdown leaves the step as planned.
 TEST(StepAdaptation, ErrorWithinTheSolesReachIsLeftToTheStabilizer) {
-  const StepAdaptationParams params;
+  const StepAdaptationParams params = switched_on();
   StepAdaptation adaptation{params};
   StepAdaptationInput in = mid_swing();
   const double omega = std::sqrt(9.81 / in.com_height);
@@ -67,7 +76,7 @@ TEST(StepAdaptation, ErrorWithinTheSolesReachIsLeftToTheStabilizer) {
 
 // Beyond it, the landing point moves by the error left at touchdown, in the error's direction.
 TEST(StepAdaptation, LargerErrorShiftsTheLandingPointByWhatIsLeftAtTouchdown) {
-  StepAdaptationParams params;
+  StepAdaptationParams params = switched_on();
   params.max_outward = 1.0;
   params.max_forward = 1.0;
   StepAdaptation adaptation{params};
@@ -87,7 +96,7 @@ TEST(StepAdaptation, LargerErrorShiftsTheLandingPointByWhatIsLeftAtTouchdown) {
 
 // The shift stays within the legs' reach, and the feet do not cross or collide.
 TEST(StepAdaptation, ShiftStaysInsideReachAndKeepsTheFeetApart) {
-  const StepAdaptationParams params;
+  const StepAdaptationParams params = switched_on();
   for (const Side swing : {Side::Left, Side::Right}) {
     const double outward = swing == Side::Left ? 1.0 : -1.0;
     StepAdaptationInput in = mid_swing();
@@ -108,8 +117,27 @@ TEST(StepAdaptation, ShiftStaysInsideReachAndKeepsTheFeetApart) {
   }
 }
 
+// An error inside the dead band moves nothing; beyond it, only the part outside counts.
+TEST(StepAdaptation, DeadBandTakesTheEstimatesScatterOut) {
+  StepAdaptationParams banded = switched_on();
+  banded.dead_band_forward = 0.05;
+  banded.dead_band_sideways = 0.03;
+  StepAdaptationInput in = mid_swing();
+  in.measured_com = {0.049, -0.029};
+  StepAdaptation inside{banded};
+  EXPECT_EQ(settle(inside, in), Eigen::Vector2d::Zero());
+
+  in.measured_com = {0.09, 0.07};
+  StepAdaptation beyond{banded};
+  StepAdaptationInput reduced = in;
+  reduced.measured_com = {0.04, 0.04};
+  StepAdaptation unbanded{switched_on()};
+  EXPECT_TRUE(settle(beyond, in).isApprox(settle(unbanded, reduced), 1e-12));
+  EXPECT_GT(beyond.shift().norm(), 0.0);
+}
+
 TEST(StepAdaptation, SwitchedOffLeavesEveryStepAsPlanned) {
-  StepAdaptationParams params;
+  StepAdaptationParams params = switched_on();
   params.enabled = false;
   StepAdaptation adaptation{params};
   StepAdaptationInput in = mid_swing();
@@ -120,7 +148,7 @@ TEST(StepAdaptation, SwitchedOffLeavesEveryStepAsPlanned) {
 // The landing point moves no faster than max_rate and is held just before touchdown; on the ground
 // the next swing starts from its plan.
 TEST(StepAdaptation, RateLimitedHeldBeforeTouchdownAndResetOnTheGround) {
-  const StepAdaptationParams params;
+  const StepAdaptationParams params = switched_on();
   StepAdaptation adaptation{params};
   StepAdaptationInput in = mid_swing();
   in.measured_com = {0.0, 0.08};
@@ -141,7 +169,7 @@ TEST(StepAdaptation, RateLimitedHeldBeforeTouchdownAndResetOnTheGround) {
 }
 
 TEST(StepAdaptation, NonFiniteStateLeavesTheShiftAsItWas) {
-  StepAdaptation adaptation{StepAdaptationParams{}};
+  StepAdaptation adaptation{switched_on()};
   StepAdaptationInput in = mid_swing();
   in.measured_com = {0.0, 0.08};
   const Eigen::Vector2d settled = settle(adaptation, in);
