@@ -10,6 +10,7 @@
 #include "control/resolved_motion_rate_control.hpp"
 #include "control/sensor_monitor.hpp"
 #include "control/stabilizer.hpp"
+#include "control/step_adaptation.hpp"
 #include "control/task_reference.hpp"
 #include "control/terrain_adaptation.hpp"
 #include "control/walking_plan.hpp"
@@ -24,6 +25,7 @@ struct WalkingControllerParams {
   bool stabilizer = true;           // false: the open-loop baseline (pattern → eq. (21) only)
   StabilizerParams stabilization;
   TerrainAdaptationParams terrain;  // used with the stabilizer (it needs the F/T sensors)
+  StepAdaptationParams step_adaptation;  // used with the stabilizer (it needs the state estimate)
   SensorLimits sensor_limits;
   // [rad] the upper body tilted this far from vertical (IMU) is beyond recovery: the fallen state.
   double fall_tilt = 25.0 * M_PI / 180.0;
@@ -51,6 +53,7 @@ class WalkingController final : public Controller {
   const ResolvedMotionRateControl& rmrc() const { return rmrc_; }
   const Stabilizer& stabilizer() const { return stabilizer_; }
   const TerrainAdaptation& terrain() const { return terrain_; }
+  const StepAdaptation& step_adaptation() const { return step_adaptation_; }
   const CycleTiming& timing() const { return timing_; }
   // The inputs eq. (21) got in the last cycle (to replay them, e.g. in the SVD baseline).
   const Eigen::VectorXd& task_reference() const { return reference_.x(); }
@@ -68,6 +71,8 @@ class WalkingController final : public Controller {
   const SensorData& detect_faults(const SensorData& raw);
   // The upper body tilted beyond recovery: the fallen state.
   bool detect_fall(const SensorData& sensors);
+  // Where the foot in the air lands, from the last cycle's state estimate (control/step_adaptation).
+  void adapt_steps();
   // The footholds' and the CoM's heights from the F/T sensors (both needed).
   void adapt_to_terrain(const SensorData& sensors);
   // eqs. (10)–(20) with the state estimate: the feet's modification Δx_λ of eq. (21)'s reference.
@@ -88,6 +93,7 @@ class WalkingController final : public Controller {
   TaskReference reference_;
   Stabilizer stabilizer_;
   TerrainAdaptation terrain_;
+  StepAdaptation step_adaptation_;
   CoMEstimator com_estimator_;
   SensorMonitor monitor_;
   FaultList new_faults_;

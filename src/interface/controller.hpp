@@ -42,6 +42,10 @@ struct ControllerStatus {
   bool com_estimate_valid = false;
   std::array<double, 2> foot_height_offset{};  // [m] terrain adaptation's offset of each foot's planned height
   std::array<double, 2> foot_tilt{};           // [rad] terrain adaptation's tilt of each foot (toes down)
+  // Step adaptation: the DCM error (measured − planned) and the shift of the landing point of the
+  // step in the air [m], heading frame (x forward, y left).
+  Eigen::Vector2d dcm_error = Eigen::Vector2d::Zero();
+  Eigen::Vector2d landing_shift = Eigen::Vector2d::Zero();
 };
 
 class Controller {

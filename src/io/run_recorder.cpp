@@ -36,6 +36,7 @@ RunRecorder::RunRecorder(const Simulation& sim, std::ostream* csv) : csv_(csv) {
     o << ',' << p << "_foot_x," << p << "_foot_z," << p << "_foot_pitch_deg," << p << "_terrain_dz," << p << "_terrain_tilt_deg";
   }
   o << ",imu_phi_x_deg,imu_phi_y_deg";
+  o << ",dcm_error_x,dcm_error_y,landing_shift_x,landing_shift_y";
   for (int i = 0; i < sim.plant().mj()->nq; ++i) o << ",qpos_" << i;
   o << '\n';
 }
@@ -112,6 +113,9 @@ void RunRecorder::record(const Simulation& sim, const SensorData& sensors, const
   // The upper body's tilt as the controller's IMU reading has it (attitude filter, errors, delay).
   const math::TiltAngles measured = math::tilt_against_gravity(sensors.imu_orientation.toRotationMatrix());
   std::snprintf(line_, sizeof(line_), ",%.4f,%.4f", measured.sagittal * kRadToDeg, measured.lateral * kRadToDeg);
+  o << line_;
+  std::snprintf(line_, sizeof(line_), ",%.5f,%.5f,%.5f,%.5f", status.dcm_error.x(), status.dcm_error.y(),
+                status.landing_shift.x(), status.landing_shift.y());
   o << line_;
   for (int i = 0; i < m->nq; ++i) {
     std::snprintf(line_, sizeof(line_), ",%.7g", d->qpos[i]);
