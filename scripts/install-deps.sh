@@ -17,6 +17,8 @@ packages=(
   libegl-mesa0 libgl1-mesa-dri    # Mesa's EGL and its software renderer (no GPU, no display needed)
   ffmpeg                          # encodes the video; its ffprobe checks it in the tests
   python3-matplotlib python3-yaml # `make experiments` figures (experiments/plot.py) and their test
+  libsqlite3-dev sqlite3          # campaign results (campaign.sqlite); the CLI for queries and tests
+  libopenmpi-dev openmpi-bin      # distributed campaigns (mpirun; the MPI test)
 )
 # node and npm build the report viewer (web/report); a node already there (with its npm) will do.
 if ! command -v node >/dev/null || ! command -v npm >/dev/null; then
