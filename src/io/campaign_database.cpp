@@ -98,6 +98,18 @@ CampaignDatabase::CampaignDatabase(const std::string& path) : path_(path) {
     sqlite3_close(db_);
     throw InputError(path + ": not a campaign database: " + e.what());
   }
+  // A database an older biped wrote has other columns: continuing it would fail at the first insert.
+  std::string missing;
+  for (const ResultColumn& c : campaign_result_columns()) {
+    Statement s(db_, "SELECT count(*) FROM pragma_table_info('runs') WHERE name = ?");
+    s.bind(1, std::string(c.name));
+    if (s.step() && s.integer(0) == 0) missing += missing.empty() ? c.name : std::string(", ") + c.name;
+  }
+  if (!missing.empty()) {
+    sqlite3_close(db_);
+    throw InputError(path + ": written by another version of biped (no column " + missing +
+                     "); use another --out or remove the folder");
+  }
 }
 
 CampaignDatabase::~CampaignDatabase() { sqlite3_close(db_); }

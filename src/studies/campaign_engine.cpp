@@ -146,6 +146,11 @@ class Dispatch {
     pending_.pop_front();
     return true;
   }
+  // Hands out nothing more (the coordinator failed; its workers end after their current item).
+  void cancel() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    pending_.clear();
+  }
   void finish(CampaignRow row) {
     {
       std::lock_guard<std::mutex> lock(mutex_);
@@ -240,23 +245,31 @@ CampaignEngineOutcome run_campaign_engine(const CampaignWork& work, const std::s
   // remote worker getting exactly one `stop` once nothing is left.
   int stops_sent = 0;
   const auto wait = std::chrono::milliseconds(mpi.active() ? 1 : 200);
-  while (outcome.ran < static_cast<long>(pending.size()) || stops_sent < remote_workers) {
-    for (const CampaignRow& row : dispatch.take(wait)) store(row);
-    int source = 0, tag = 0;
-    while (mpi.active() && mpi.poll(source, tag)) {
-      const auto begin = Clock::now();
-      const nlohmann::json request = nlohmann::json::parse(mpi.receive(source, tag));
-      outcome.storing_s += std::chrono::duration<double>(Clock::now() - begin).count();
-      if (!request["result"].is_null()) store(from_json(request["result"]));
-      long index = 0;
-      if (dispatch.next(index)) {
-        mpi.send(source, tag, nlohmann::json{{"run", index}}.dump());
-      } else {
-        mpi.send(source, tag, R"({"stop": true})");
-        ++stops_sent;
+  try {
+    while (outcome.ran < static_cast<long>(pending.size()) || stops_sent < remote_workers) {
+      for (const CampaignRow& row : dispatch.take(wait)) store(row);
+      int source = 0, tag = 0;
+      while (mpi.active() && mpi.poll(source, tag)) {
+        const auto begin = Clock::now();
+        const nlohmann::json request = nlohmann::json::parse(mpi.receive(source, tag));
+        outcome.storing_s += std::chrono::duration<double>(Clock::now() - begin).count();
+        if (!request["result"].is_null()) store(from_json(request["result"]));
+        long index = 0;
+        if (dispatch.next(index)) {
+          mpi.send(source, tag, nlohmann::json{{"run", index}}.dump());
+        } else {
+          mpi.send(source, tag, R"({"stop": true})");
+          ++stops_sent;
+        }
       }
+      progress.show(false);
     }
-    progress.show(false);
+  } catch (...) {
+    // A failure to store (disk full, database locked) ends the campaign with its message; the
+    // worker threads finish their items first (a thread left running would abort the program).
+    dispatch.cancel();
+    for (std::thread& t : threads) t.join();
+    throw;
   }
   for (std::thread& t : threads) t.join();
   progress.show(true);

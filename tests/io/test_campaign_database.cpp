@@ -3,6 +3,7 @@
 #include "io/campaign_database.hpp"
 
 #include <gtest/gtest.h>
+#include <sqlite3.h>
 
 #include "io/yaml_reader.hpp"
 #include "test_support.hpp"
@@ -73,6 +74,25 @@ TEST(CampaignDatabase, ARunIsStoredOnce) {
   db.insert(row(1, false));
   EXPECT_ANY_THROW(db.insert(row(1, true)));
   EXPECT_EQ(db.rows().size(), 1u);
+}
+
+TEST(CampaignDatabase, RefusesADatabaseWithOtherColumns) {
+  const auto path = (test::fresh_dir("db-schema") / "c.sqlite").string();
+  sqlite3* raw = nullptr;
+  ASSERT_EQ(sqlite3_open(path.c_str(), &raw), SQLITE_OK);
+  ASSERT_EQ(sqlite3_exec(raw, "CREATE TABLE runs (run INTEGER PRIMARY KEY, status TEXT NOT NULL, error TEXT, "
+                              "parameters TEXT NOT NULL, fell INTEGER, wall_time_s REAL, host TEXT, rank INTEGER, "
+                              "command TEXT, result TEXT)",
+                         nullptr, nullptr, nullptr),
+            SQLITE_OK);
+  sqlite3_close(raw);
+  try {
+    CampaignDatabase db(path);
+    FAIL() << "an older database was opened";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("fall_time_s"), std::string::npos) << e.what();
+  }
 }
 
 TEST(CampaignDatabase, UnwritablePlaceIsBadInput) {
