@@ -1,8 +1,10 @@
 #include "io/scenario.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 
+#include "io/parameter_table.hpp"
 #include "io/yaml_reader.hpp"
 
 namespace biped {
@@ -127,24 +129,27 @@ void read_terrain(const YamlReader& r, const YAML::Node& root, Scenario& s) {
   }
 }
 
-void read_sensors(const YamlReader& r, const YAML::Node& root, Scenario& s) {
-  const YAML::Node sensors = r.mapping(root, "", "sensors");
-  r.expect_keys(sensors, "sensors", {"noise", "delay_cycles", "faults"});
-  if (!sensors) return;
-  s.sensor_noise = r.boolean_or(sensors, "sensors", "noise", false);
-  const long delay = r.integer_or(sensors, "sensors", "delay_cycles", 0);
-  if (delay < 0 || delay > 100) r.fail(sensors["delay_cycles"], "sensors.delay_cycles", "must be between 0 and 100");
-  s.sensor_delay_cycles = static_cast<int>(delay);
+void read_faults(const YamlReader& r, const YAML::Node& sensors, Scenario& s) {
   const YAML::Node faults = r.sequence(sensors, "sensors", "faults");
   for (std::size_t i = 0; i < faults.size(); ++i) {
     const std::string where = "sensors.faults." + std::to_string(i);
     const YAML::Node f = faults[i];
-    r.expect_keys(f, where, {"t", "sensor", "value", "duration"});
+    r.expect_keys(f, where, {"t", "sensor", "value", "jump_deg", "duration"});
     SensorFault fault;
     fault.t = r.non_negative_or(f, where, "t", 0.0);
     if (!f["t"]) r.fail(f, where + ".t", "missing (required)");
     fault.sensor = r.text(f, where, "sensor");
     fault.duration = r.non_negative_or(f, where, "duration", 0.0);
+    if (f["jump_deg"]) {
+      if (f["value"]) r.fail(f["jump_deg"], where + ".jump_deg", "give either value or jump_deg, not both");
+      const bool joint = std::find(kNonJointSensors.begin(), kNonJointSensors.end(), fault.sensor) == kNonJointSensors.end();
+      if (!joint) r.fail(f["jump_deg"], where + ".jump_deg", "only a joint's encoder jumps (sensor is '" + fault.sensor + "')");
+      fault.mode = SensorFault::Mode::Jump;
+      fault.value = r.number(f, where, "jump_deg") * kRadiansPerDegree;
+      s.faults.push_back(fault);
+      continue;
+    }
+    if (!f["value"]) r.fail(f, where + ".value", "missing (required: nan, freeze or a number; or jump_deg)");
     const std::string value = r.text(f, where, "value");
     if (value == "nan" || value == ".nan" || value == "NaN") {
       fault.mode = SensorFault::Mode::NaN;
@@ -158,7 +163,75 @@ void read_sensors(const YamlReader& r, const YAML::Node& root, Scenario& s) {
   }
 }
 
+Vector6d six(const YamlReader& r, const YAML::Node& map, const std::string& where, const char* key,
+             Check::Lower lower) {
+  const Vector6d v = r.numbers(map, where, key, 6);
+  const bool bad = lower == Check::Lower::Positive ? (v.array() <= 0.0).any() : (v.array() < 0.0).any();
+  if (lower != Check::Lower::None && bad) {
+    r.fail(map[key], where + "." + key,
+           lower == Check::Lower::Positive ? "every value must be positive" : "no value may be negative");
+  }
+  return v;
+}
+
+void read_imu(const YamlReader& r, const YAML::Node& imu, ImuSpec& into) {
+  const std::string where = "sensors.imu";
+  r.expect_keys(imu, where,
+                {"attitude_filter", "filter_time_s", "bandwidth_hz", "misalignment_deg", "gyro_bias",
+                 "gyro_bias_walk", "accel_bias"});
+  into.attitude_filter = r.boolean_or(imu, where, "attitude_filter", into.attitude_filter);
+  into.filter_time_s = r.positive_or(imu, where, "filter_time_s", into.filter_time_s);
+  into.bandwidth_hz = r.non_negative_or(imu, where, "bandwidth_hz", into.bandwidth_hz);
+  if (imu["misalignment_deg"]) into.misalignment_rad = r.vector3(imu, where, "misalignment_deg") * kRadiansPerDegree;
+  if (imu["gyro_bias"]) into.gyro_bias = r.vector3(imu, where, "gyro_bias");
+  if (imu["gyro_bias_walk"]) into.gyro_bias_walk = r.non_negative_or(imu, where, "gyro_bias_walk", 0.0);
+  if (imu["accel_bias"]) into.accel_bias = r.vector3(imu, where, "accel_bias");
+}
+
+void read_force_torque(const YamlReader& r, const YAML::Node& ft, std::array<ForceTorqueSpec, 2>& into) {
+  r.expect_keys(ft, "sensors.ft", {"left", "right"});
+  for (Side side : kSides) {
+    const std::string where = std::string("sensors.ft.") + name_of(side);
+    const YAML::Node f = r.mapping(ft, "sensors.ft", name_of(side));
+    r.expect_keys(f, where, {"offset", "scale", "drift_walk", "thermal_drift", "thermal_time_s"});
+    ForceTorqueSpec& spec = into[index_of(side)];
+    if (f["offset"]) spec.offset = six(r, f, where, "offset", Check::Lower::None);
+    if (f["scale"]) spec.scale = six(r, f, where, "scale", Check::Lower::Positive);
+    if (f["drift_walk"]) spec.drift_walk = six(r, f, where, "drift_walk", Check::Lower::NonNegative);
+    if (f["thermal_drift"]) spec.thermal_drift = six(r, f, where, "thermal_drift", Check::Lower::None);
+    if (f["thermal_time_s"]) spec.thermal_time_s = r.positive_or(f, where, "thermal_time_s", 1.0);
+  }
+}
+
+void read_sensors(const YamlReader& r, const YAML::Node& root, Scenario& s) {
+  s.sensors = r.mapping(root, "", "sensors");
+  SimulationParams checked;  // every key checked here; make_run_config applies them over the robot file's
+  read_sensor_settings(r, s.sensors, true, checked);
+  s.ideal_sensors = r.boolean_or(s.sensors, "sensors", "ideal", false);
+  read_faults(r, s.sensors, s);
+}
+
 }  // namespace
+
+void read_sensor_settings(const YamlReader& r, const YAML::Node& sensors, bool scenario, SimulationParams& into) {
+  std::vector<std::string> keys = {"noise", "delay_cycles", "imu", "ft", "encoders"};
+  if (scenario) keys.insert(keys.end(), {"ideal", "faults"});
+  r.expect_keys(sensors, "sensors", keys);
+  into.sensor_noise = r.boolean_or(sensors, "sensors", "noise", into.sensor_noise);
+  const long delay = r.integer_or(sensors, "sensors", "delay_cycles", into.sensor_delay_cycles);
+  if (delay < 0 || delay > 100) r.fail(sensors["delay_cycles"], "sensors.delay_cycles", "must be between 0 and 100");
+  into.sensor_delay_cycles = static_cast<int>(delay);
+  read_imu(r, r.mapping(sensors, "sensors", "imu"), into.sensor_errors.imu);
+  read_force_torque(r, r.mapping(sensors, "sensors", "ft"), into.sensor_errors.ft);
+  const YAML::Node encoders = r.mapping(sensors, "sensors", "encoders");
+  r.expect_keys(encoders, "sensors.encoders", {"offset_deg"});
+  const YAML::Node offsets = r.mapping(encoders, "sensors.encoders", "offset_deg");
+  for (const auto& entry : offsets) {
+    const std::string joint = entry.first.Scalar();
+    into.sensor_errors.encoder_offset_rad[joint] =
+        r.number(offsets, "sensors.encoders.offset_deg", joint.c_str()) * kRadiansPerDegree;
+  }
+}
 
 Scenario load_scenario(const std::string& path, const std::vector<std::string>& overrides) {
   YAML::Node root = load_yaml_file(path);

@@ -37,6 +37,7 @@ SensorEmulationParams sensor_params(const SimulationParams& p, const RobotModel&
   }
   s.noise = p.sensor_noise;
   s.noise_levels = p.noise_levels;
+  s.errors = p.sensor_errors;
   s.delay_cycles = p.sensor_delay_cycles;
   s.faults = p.faults;
   s.seed = p.seed;
@@ -96,6 +97,7 @@ void Simulation::reset() {
   const double sink = plant_.total_mass() * std::abs(m->opt.gravity[2]) / (2.0 * params_.sole_contact.stiffness_per_foot);
   d->qpos[2] -= sole_clearance(plant_, d, params_.world.terrain) + sink;
   sole_contact_.reset();
+  sensors_.reset();
   mj_forward(m, d);
   sole_contact_.apply(m, d);
   mj_forward(m, d);  // sensors now see the contact forces

@@ -34,6 +34,7 @@ struct SimulationParams {
   std::map<std::string, int> encoder_bits_of;  // per joint name, overrides the default
   bool sensor_noise = false;
   SensorNoiseParams noise_levels;
+  SensorErrorSpec sensor_errors;  // explicit errors and the IMU's attitude filter (default: ideal)
   int sensor_delay_cycles = 0;
   std::vector<SensorFault> faults;
   std::vector<Push> pushes;
