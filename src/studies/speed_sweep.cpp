@@ -45,7 +45,6 @@ nlohmann::json run_speed_sweep(const Scenario& base, const RunConfig& config, co
   }
   const int count = static_cast<int>(std::floor((options.to - options.from) / options.step + 1e-9)) + 1;
   std::mutex progress_mutex;
-  int finished = 0;
   // Each speed is its own simulation: all of them at once on the campaign engine's threads.
   const std::vector<nlohmann::json> results = parallel_map<nlohmann::json>(count, options.jobs, [&](long i) {
     // Rounded to 1 µm/s: 0.1 + 6 × 0.1 is 0.70000000000000007, which a table row of 0.7 saturates.
@@ -64,14 +63,14 @@ nlohmann::json run_speed_sweep(const Scenario& base, const RunConfig& config, co
     const ScenarioResult r = run_scenario(scenario, config, "", &observer);
     const bool fell = r.summary["fell"].get<bool>();
     const double limit = config.controller.walking.plan.limits.vx_max;
-    if (progress) {  // one line per speed as it finishes (in any order: the speeds run in parallel)
+    if (progress) {  // one line per speed as it finishes, numbered by speed (they run in parallel)
       char line[256];
       int n = std::snprintf(line, sizeof(line), "commanded %.2f m/s: ", speed);
       n += fell ? std::snprintf(line + n, sizeof(line) - n, "FELL at %.3f s", r.summary["fall_time_s"].get<double>())
                 : std::snprintf(line + n, sizeof(line) - n, "walked %.2f m/s", observer.speed());
       if (observer.saturated()) std::snprintf(line + n, sizeof(line) - n, " (saturated to the limit %.2f m/s)", limit);
       const std::lock_guard<std::mutex> lock(progress_mutex);
-      *progress << "speed-sweep " << ++finished << "/" << count << ": " << line << std::endl;
+      *progress << "speed-sweep " << i + 1 << "/" << count << ": " << line << std::endl;
     }
     return nlohmann::json{{"commanded_mps", speed},
                           {"fell", fell},
