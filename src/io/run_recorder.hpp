@@ -41,7 +41,7 @@ class RunRecorder final : public RunObserver {
   bool started_ = false;
   bool in_contact_[2] = {true, true};
   int touchdowns_ = 0;
-  char line_[512];
+  std::string row_;  // the log.csv row being written
 };
 
 }  // namespace biped

@@ -12,6 +12,7 @@
 #include "interface/commands.hpp"
 #include "interface/sensor_data.hpp"
 #include "model/robot_model.hpp"
+#include "sim/collision_gate.hpp"
 #include "sim/fall_detection.hpp"
 #include "sim/joint_drives.hpp"
 #include "sim/sensor_emulation.hpp"
@@ -45,6 +46,9 @@ struct SimulationParams {
   std::vector<Push> pushes;
   unsigned long long seed = 1;
   double software_limit_margin_rad = kSoftwareLimitMarginRad;
+  // MuJoCo's collision detection only for steps in which a robot geom is near the ground (false:
+  // every step; a run is the same either way, only slower).
+  bool collision_gate = true;
 };
 
 class Simulation {
@@ -69,7 +73,9 @@ class Simulation {
   const mjData* data() const { return data_.get(); }
   const JointDrives& drives() const { return drives_; }
   const SensorEmulation& sensors() const { return sensors_; }
+  const Terrain& terrain() const { return terrain_; }
   const SoleContact& sole_contact() const { return sole_contact_; }
+  const CollisionGate& collision_gate() const { return collision_gate_; }
   // Ground-truth normal contact force on a foot [N].
   double foot_contact_force(Side side) const;
   double standing_pelvis_height() const { return standing_pelvis_height_; }
@@ -82,12 +88,16 @@ class Simulation {
     void operator()(mjData* d) const { mj_deleteData(d); }
   };
   SimulationParams params_;
+  Terrain terrain_;
   RobotModel plant_;
+  // The simulator's own world model, written during a run: the collision gate's flag.
+  mjModel* model_;
   std::unique_ptr<mjData, MjDataDeleter> data_;
   std::vector<int> plant_joint_of_;
   JointDrives drives_;
   SensorEmulation sensors_;
   SoleContact sole_contact_;
+  CollisionGate collision_gate_;
   std::vector<int> push_body_;
   Eigen::VectorXd plant_setpoint_;
   int steps_per_period_ = 1;
