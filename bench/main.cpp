@@ -6,6 +6,8 @@
 #include <map>
 #include <string>
 
+#include "studies/controller_bench.hpp"
+
 namespace {
 
 class MedianRecorder : public benchmark::ConsoleReporter {
@@ -31,6 +33,8 @@ class MedianRecorder : public benchmark::ConsoleReporter {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // Google Benchmark's header gives the date and the clock rate; the CPU model names the machine.
+  benchmark::AddCustomContext("cpu_model", biped::cpu_model());
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
   MedianRecorder reporter;

@@ -33,20 +33,36 @@ int run_command(const std::string& scenario_path, const std::string& out_option,
   }
   const biped::Scenario scenario = biped::load_scenario(scenario_path, overrides);
   const biped::RunConfig config = biped::make_run_config(scenario);
-  const std::string out_dir =
-      out_option.empty() ? (std::filesystem::path("out") / scenario.name).string() : out_option;
-  const biped::ScenarioResult result =
-      biped::run_scenario(scenario, config, out_dir, nullptr, video.path.empty() ? nullptr : &video);
+  // By default the latest run's files are out/<scenario>/*, earlier runs' out/<scenario>/previous/<n>/;
+  // --out DIR is written as given.
+  const bool default_out = out_option.empty();
+  const std::string out_dir = default_out ? (std::filesystem::path("out") / scenario.name).string() : out_option;
+  const biped::ScenarioResult result = biped::run_scenario(scenario, config, out_dir, nullptr,
+                                                           video.path.empty() ? nullptr : &video, default_out);
   const auto& s = result.summary;
+  char fall[256] = "no fall";
+  if (s["fell"].get<bool>()) {
+    std::snprintf(fall, sizeof(fall), "FELL at %.3f s: %s", s["fall_time_s"].get<double>(),
+                  s["fall_reason"].get<std::string>().c_str());
+  }
   std::printf("%s (%s): %.1f s simulated in %.2f s (%.1fx real time), %s\n", scenario.name.c_str(),
               config.robot.c_str(), s["sim_time_s"].get<double>(), s["wall_time_s"].get<double>(),
-              s["realtime_factor"].get<double>(),
-              s["fell"].get<bool>() ? ("FELL at " + std::to_string(s["fall_time_s"].get<double>()) + " s: " +
-                                       s["fall_reason"].get<std::string>())
-                                          .c_str()
-                                    : "no fall");
+              s["realtime_factor"].get<double>(), fall);
+  if (s["command_saturated"].get<bool>() && s.contains("command_beyond_limits")) {
+    const nlohmann::json& beyond = s["command_beyond_limits"];
+    for (auto axis = beyond.begin(); axis != beyond.end(); ++axis) {
+      const double limit = (*axis)["limit"].get<double>();
+      std::fprintf(stderr, "warning: %s: walk command %s = %g is beyond the limit %g (step table, controller.limits): "
+                   "the controller saturated it to %g\n", scenario_path.c_str(), axis.key().c_str(),
+                   (*axis)["commanded"].get<double>(), limit, limit);
+    }
+  }
   std::printf("results: %s/summary.json, %s/log.csv, %s/report.html\n", out_dir.c_str(), out_dir.c_str(),
               out_dir.c_str());
+  if (!result.previous_run_dir.empty()) {
+    std::printf("the previous run's files: %s/ (the last %d runs are kept)\n", result.previous_run_dir.c_str(),
+                biped::kPreviousRunsKept);
+  }
   if (s.contains("video")) {
     const auto& v = s["video"];
     std::printf("video: %s (%d frames, %.1f s rendering, %.0f ms a frame)\n", video.path.c_str(),
@@ -95,10 +111,15 @@ int bench_command(const std::string& robot, const std::string& json_path, double
   };
   std::printf("%s: %ld controller cycles walking at %.1f m/s (stabilizer on)%s\n", r["robot"].get<std::string>().c_str(),
               r["cycles"].get<long>(), options.speed, r["fell"].get<bool>() ? " -- THE ROBOT FELL" : "");
+  std::printf("  measured on %s (%d hardware threads), %s\n", r["cpu_model"].get<std::string>().c_str(),
+              r["hardware_threads"].get<int>(), r["date"].get<std::string>().c_str());
   line("whole cycle", "cycle_us");
   line("stabilizer (estimation, eqs. 10, 20)", "stabilizer_us");
   line("resolved motion rate control (eq. 21)", "rmrc_us");
   line("eq. (21) with explicit SVD pseudo-inverse", "svd_baseline_us");
+  line("one physics step of the same robot", "physics_step_us");
+  std::printf("  the whole cycle takes %.2f physics steps (a ratio that holds across machines)\n",
+              r["cycle_per_physics_step"].get<double>());
   std::printf("  eq. (21) speed-up over explicit SVD: %.1fx; heap allocations per cycle: %g; real-time factor %.1f\n",
               r["speedup_vs_svd"].get<double>(), r["allocations_per_cycle"].get<double>(),
               r["realtime_factor"].get<double>());
@@ -110,12 +131,11 @@ int bench_command(const std::string& robot, const std::string& json_path, double
   return 0;
 }
 
-int push_test_command(const std::string& scenario_path, const std::string& direction,
+int push_test_command(const std::string& scenario_path, biped::PushTestOptions options,
                       const std::vector<std::string>& overrides) {
   const biped::Scenario scenario = biped::load_scenario(scenario_path, overrides);
   const biped::RunConfig config = biped::make_run_config(scenario);
-  biped::PushTestOptions options;
-  options.direction = direction;
+  options.progress = &std::cerr;
   std::printf("%s\n", biped::run_push_test(scenario, config, options).dump().c_str());
   return 0;
 }
@@ -130,14 +150,9 @@ int speed_sweep_command(const std::string& scenario_path, const biped::SpeedSwee
     if (!dir.empty()) biped::prepare_output_directory(dir.string());
     file = std::make_unique<biped::AtomicOutputFile>(json_path);
   }
-  const nlohmann::json r = biped::run_speed_sweep(scenario, config, options);
-  for (const auto& run : r["runs"]) {
-    std::printf("  commanded %.2f m/s: %s%s\n", run["commanded_mps"].get<double>(),
-                run["fell"].get<bool>()
-                    ? ("FELL at " + std::to_string(run["fall_time_s"].get<double>()) + " s").c_str()
-                    : ("walked " + std::to_string(run["walked_mps"].get<double>()) + " m/s").c_str(),
-                run["command_saturated"].get<bool>() ? " (command saturated by the step table)" : "");
-  }
+  // Progress on stderr as each speed finishes; on stdout the result, its JSON on the last line.
+  const nlohmann::json r = biped::run_speed_sweep(scenario, config, options, &std::cerr);
+  std::printf("fastest without a fall: %.2f m/s\n", r["fastest_without_fall_mps"].get<double>());
   std::printf("%s\n", r.dump().c_str());
   if (file) {
     file->stream() << r.dump(2) << '\n';
@@ -183,11 +198,19 @@ int main(int argc, char** argv) {
   bench->add_option("--json", bench_json, "Write the figures as JSON");
   bench->add_option("--duration", bench_duration, "Simulated seconds")->capture_default_str()->check(CLI::Range(1.0, 600.0));
 
-  std::string push_scenario, push_direction;
+  std::string push_scenario;
   std::vector<std::string> push_overrides;
+  biped::PushTestOptions push_options;
+  double push_direction_deg = 0.0;
   CLI::App* push = app.add_subcommand("push-test", "Largest 0.1 s push impulse survived, by bisection to 1 N·s");
   push->add_option("scenario", push_scenario, "Scenario file (YAML)")->required();
-  push->add_option("--direction", push_direction, "forward | backward | left | right")->required();
+  CLI::Option* named = push->add_option("--direction", push_options.direction, "forward | backward | left | right");
+  CLI::Option* angle =
+      push->add_option("--direction-deg", push_direction_deg, "Direction in the robot's heading frame (0 forward, 90 left)");
+  named->excludes(angle);
+  push->add_option("--phase", push_options.phase, "Share of the single support at the push (0..1)")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 1.0));
   push->add_option("--set", push_overrides, "Override a scenario key")->type_name("KEY=VALUE");
 
   std::string sweep_scenario, sweep_json;
@@ -206,18 +229,34 @@ int main(int argc, char** argv) {
   CLI::App* params = app.add_subcommand("params", "List the robot files' parameters: key, default, unit, check, description");
   params->add_flag("--markdown", params_markdown, "As the Markdown table of docs/scenarios.md");
 
+  // A mistyped command: CLI11 alone would only say that a subcommand is required.
+  std::string known;
+  bool is_known = false;
+  for (const CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) {
+    known += (known.empty() ? "" : ", ") + sub->get_name();
+    is_known = is_known || (argc > 1 && sub->check_name(argv[1]));
+  }
+  if (argc > 1 && argv[1][0] != '-' && !is_known) {
+    std::cerr << "error: unknown command '" << argv[1] << "' (commands: " << known << "; see biped --help)\n";
+    return kExitBadInput;
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    const int code = app.exit(e);
-    return code == 0 ? 0 : kExitBadInput;
+    if (e.get_exit_code() == 0) return app.exit(e);  // --help
+    std::cerr << "error: " << e.what() << " (biped --help)\n";
+    return kExitBadInput;
   }
 
   try {
     if (*run) return run_command(scenario_path, out_dir, overrides, video, video_size);
     if (*tables) return tables_command(robot, table_out);
     if (*bench) return bench_command(bench_robot, bench_json, bench_duration);
-    if (*push) return push_test_command(push_scenario, push_direction, push_overrides);
+    if (*push) {
+      if (push->count("--direction-deg") > 0) push_options.direction_deg = push_direction_deg;
+      else if (push->count("--direction") == 0) throw biped::InputError("push-test: give --direction or --direction-deg");
+      return push_test_command(push_scenario, push_options, push_overrides);
+    }
     if (*sweep) return speed_sweep_command(sweep_scenario, sweep_options, sweep_overrides, sweep_json);
     if (*params) return params_command(params_markdown);
   } catch (const biped::InputError& e) {

@@ -24,6 +24,16 @@ Eigen::Vector3d CoMEstimator::com_from_foot(const Eigen::VectorXd& joint_positio
   return Eigen::AngleAxisd(-heading, Eigen::Vector3d::UnitZ()) * in_world;
 }
 
+Eigen::Quaterniond CoMEstimator::upper_body_on_flat_foot(const Eigen::VectorXd& joint_positions, Side stance,
+                                                         double stance_yaw) {
+  for (int i = 0; i < 7; ++i) qpos_[i] = i == 3 ? 1.0 : 0.0;
+  for (int i = 0; i < model_.num_joints(); ++i) qpos_[model_.joints()[i].qpos_adr] = joint_positions[i];
+  forward_kinematics(model_.tree(), qpos_, frames_);
+  const Eigen::Quaterniond& foot = frames_.orientation[model_.foot(stance).body];
+  const Eigen::Quaterniond& body = frames_.orientation[model_.upper_body()];
+  return Eigen::Quaterniond(Eigen::AngleAxisd(stance_yaw, Eigen::Vector3d::UnitZ())) * foot.conjugate() * body;
+}
+
 void CoMEstimator::update(const SensorData& sensors, Side stance, double dt) {
   const Eigen::Vector2d estimate = com_from_foot(sensors.joint_position, sensors.imu_orientation, stance).head<2>();
   const double filter = dt / (0.01 + dt);

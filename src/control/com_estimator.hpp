@@ -19,6 +19,10 @@ class CoMEstimator {
   Eigen::Vector3d com_from_foot(const Eigen::VectorXd& joint_positions, const Eigen::Quaterniond& upper_body,
                                 Side foot);
 
+  // The upper body's orientation in the world if the `stance` foot stands flat on level ground with
+  // heading `stance_yaw`, from the encoders alone: what stands in for a failed IMU.
+  Eigen::Quaterniond upper_body_on_flat_foot(const Eigen::VectorXd& joint_positions, Side stance, double stance_yaw);
+
   // Forgets the last estimate: the next update() starts the rate from zero.
   void reset() { has_estimate_ = false; }
   // One cycle: the horizontal CoM relative to `stance` and its rate, differentiated over dt and

@@ -10,7 +10,7 @@ void FrozenSignalDetector::reset(const SensorData& first) {
   imu_repeats_ = 0;
 }
 
-Fault FrozenSignalDetector::update(const SensorData& s, int frozen_cycles) {
+void FrozenSignalDetector::update(const SensorData& s, int frozen_cycles, FaultList& out) {
   for (Side side : kSides) {
     const int k = index_of(side);
     const Wrench& w = s.foot_wrench[k];
@@ -22,14 +22,13 @@ Fault FrozenSignalDetector::update(const SensorData& s, int frozen_cycles) {
   imu_repeats_ = imu_same ? imu_repeats_ + 1 : 0;
   last_rate_ = s.imu_angular_rate;
   last_acceleration_ = s.imu_acceleration;
-  if (frozen_cycles <= 0) return {};
+  if (frozen_cycles <= 0) return;
   for (Side side : kSides) {
     if (wrench_repeats_[index_of(side)] >= frozen_cycles) {
-      return {FaultSignal::ForceTorque, FaultCheck::Frozen, index_of(side)};
+      out.add({FaultSignal::ForceTorque, FaultCheck::Frozen, index_of(side), s.time});
     }
   }
-  if (imu_repeats_ >= frozen_cycles) return {FaultSignal::Imu, FaultCheck::Frozen, -1};
-  return {};
+  if (imu_repeats_ >= frozen_cycles) out.add({FaultSignal::Imu, FaultCheck::Frozen, -1, s.time});
 }
 
 }  // namespace biped

@@ -12,8 +12,8 @@ namespace biped {
 class FrozenSignalDetector {
  public:
   void reset(const SensorData& first);
-  // The frozen signal (check Frozen), or no fault; `frozen_cycles` 0 switches the check off.
-  Fault update(const SensorData& s, int frozen_cycles);
+  // Adds every frozen signal (check Frozen) to `out`; `frozen_cycles` 0 switches the check off.
+  void update(const SensorData& s, int frozen_cycles, FaultList& out);
 
  private:
   std::array<Wrench, 2> last_wrench_;

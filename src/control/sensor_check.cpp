@@ -9,32 +9,39 @@ bool within(const Eigen::Vector3d& v, double bound) {
   return v.allFinite() && v.cwiseAbs().maxCoeff() <= bound;
 }
 
-Fault implausible(FaultSignal signal, int index = -1) { return {signal, FaultCheck::Implausible, index}; }
+Fault implausible(FaultSignal signal, double time, int index = -1) {
+  return {signal, FaultCheck::Implausible, index, std::isfinite(time) ? time : 0.0};
+}
 
 }  // namespace
 
-Fault check_sensors(const RobotModel& model, const SensorLimits& limits, const SensorData& s) {
-  if (!std::isfinite(s.time)) return implausible(FaultSignal::Time);
+void find_implausible(const RobotModel& model, const SensorLimits& limits, const SensorData& s, FaultList& out) {
+  if (!std::isfinite(s.time)) out.add(implausible(FaultSignal::Time, s.time));
   const auto& joints = model.joints();
   for (int i = 0; i < model.num_joints(); ++i) {
     const double q = s.joint_position[i];
     if (!std::isfinite(q) || q < joints[i].lower - limits.encoder_margin ||
         q > joints[i].upper + limits.encoder_margin) {
-      return implausible(FaultSignal::JointEncoder, i);
+      out.add(implausible(FaultSignal::JointEncoder, s.time, i));
     }
   }
   if (!s.imu_orientation.coeffs().allFinite() || std::abs(s.imu_orientation.norm() - 1.0) > 1e-3) {
-    return implausible(FaultSignal::ImuOrientation);
+    out.add(implausible(FaultSignal::ImuOrientation, s.time));
   }
-  if (!within(s.imu_angular_rate, limits.max_angular_rate)) return implausible(FaultSignal::ImuAngularRate);
-  if (!within(s.imu_acceleration, limits.max_acceleration)) return implausible(FaultSignal::ImuAcceleration);
+  if (!within(s.imu_angular_rate, limits.max_angular_rate)) out.add(implausible(FaultSignal::ImuAngularRate, s.time));
+  if (!within(s.imu_acceleration, limits.max_acceleration)) out.add(implausible(FaultSignal::ImuAcceleration, s.time));
   for (Side side : kSides) {
     const Wrench& w = s.foot_wrench[index_of(side)];
     if (!within(w.force, limits.max_force) || !within(w.torque, limits.max_torque)) {
-      return implausible(FaultSignal::ForceTorque, index_of(side));
+      out.add(implausible(FaultSignal::ForceTorque, s.time, index_of(side)));
     }
   }
-  return {};
+}
+
+Fault check_sensors(const RobotModel& model, const SensorLimits& limits, const SensorData& s) {
+  FaultList faults;
+  find_implausible(model, limits, s, faults);
+  return faults.count > 0 ? faults.items[0] : Fault{};
 }
 
 }  // namespace biped

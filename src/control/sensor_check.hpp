@@ -13,10 +13,15 @@ struct SensorLimits {
   double max_acceleration = 160.0;    // [m/s²] (16 g)
   double encoder_margin = 0.05;       // [rad] tolerated beyond the hard joint limits
   int frozen_cycles = 50;             // identical F/T or IMU readings in a row that mean a dead signal (0: off)
+  double encoder_jump = 0.03;         // [rad] an encoder moving farther in one cycle has jumped (30 rad/s at 1 kHz)
+  // [rad] an encoder reading that stays bit-identical for frozen_cycles while its set-point moves
+  // by more than this is frozen (a joint that follows its set-point changes its reading).
+  double encoder_frozen_motion = 0.02;
 };
 
-// The first implausible signal of the reading (checked in the order time, encoders, IMU, F/T), or
-// no fault (a false Fault).
+// Every implausible signal of the reading, added to `out` (time, encoders, IMU, F/T).
+void find_implausible(const RobotModel& model, const SensorLimits& limits, const SensorData& s, FaultList& out);
+// The first of them (in that order), or no fault (a false Fault).
 Fault check_sensors(const RobotModel& model, const SensorLimits& limits, const SensorData& s);
 
 }  // namespace biped

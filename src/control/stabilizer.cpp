@@ -104,6 +104,12 @@ void Stabilizer::hybrid_position_force_control(int k, double dt, const Wrench& m
   mod.offset[0] = std::clamp(mod.offset[0], -params_.max_height, params_.max_height);
   mod.offset[1] = std::clamp(mod.offset[1], -params_.max_tilt, params_.max_tilt);
   mod.offset[2] = std::clamp(mod.offset[2], -params_.max_tilt, params_.max_tilt);
+  // std::clamp passes NaN through: a non-finite input (which the sensor monitor keeps out) must
+  // not stay in the state, so the foot returns to position control from zero.
+  if (!mod.offset.allFinite() || !mod.rate.allFinite() || !integral.allFinite()) {
+    mod = FootModification{};
+    integral.setZero();
+  }
 }
 
 // Least squares with forgetting over the double support, where the ground shares the load between
@@ -146,7 +152,9 @@ void Stabilizer::step(double dt, const StabilizerInput& in) {
   first_ = false;
   const double filter = dt / (params_.contact_filter_time + dt);
   for (int k = 0; k < 2; ++k) {
+    if (!desired_[k].force.allFinite() || !desired_[k].torque.allFinite()) desired_[k] = Wrench{};
     filtered_force_[k] += filter * (in.measured[k].force.z() - filtered_force_[k]);
+    if (!std::isfinite(filtered_force_[k])) filtered_force_[k] = 0.0;
     const double contact =
         std::clamp((filtered_force_[k] - params_.contact_force_low) / (params_.contact_force_high - params_.contact_force_low), 0.0, 1.0);
     alpha_[k] = in.planned_contact[k] ? contact : 0.0;

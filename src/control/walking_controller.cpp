@@ -27,6 +27,7 @@ WalkingController::WalkingController(const RobotModel& model, const WalkingContr
       stabilizer_(model, params.stabilization),
       terrain_(model, params.terrain),
       com_estimator_(model),
+      monitor_(model, params.sensor_limits),
       last_setpoint_(model.stand_pose()),
       substituted_sensors_(model.num_joints()) {}
 
@@ -35,8 +36,8 @@ void WalkingController::reset(const SensorData& first) {
   status_ = ControllerStatus{};
   stabilizer_.reset();
   terrain_.reset();
-  faulty_foot_sensor_ = -1;
-  frozen_.reset(first);
+  monitor_.reset(first);
+  last_time_ = first.time;
   com_estimator_.reset();
 
   // The controller's own frame: the stand keyframe's base with the measured joint angles, shifted
@@ -68,6 +69,11 @@ Eigen::Matrix3d WalkingController::heading_frame() const { return yaw_rotation(p
 
 void WalkingController::step(const SensorData& raw_sensors, const WalkCommand& command, JointCommand& out) {
   const SensorData& sensors = detect_faults(raw_sensors);
+  if (plan_.state() == WalkingState::Fallen || detect_fall(sensors)) {
+    out.position = last_setpoint_;
+    publish_status();
+    return;
+  }
   const PatternSample& sample = plan_.advance(sensors.time - start_time_, command);
   adapt_to_terrain(sensors);
   reference_.update(sample, terrain_, rmrc_.task());
@@ -77,29 +83,47 @@ void WalkingController::step(const SensorData& raw_sensors, const WalkCommand& c
 }
 
 const SensorData& WalkingController::detect_faults(const SensorData& raw) {
-  if (plan_.state() != WalkingState::SafeStop) {
-    Fault fault = check_sensors(model_, params_.sensor_limits, raw);
-    if (!fault) fault = frozen_.update(raw, params_.sensor_limits.frozen_cycles);
-    if (fault) {
-      plan_.enter_safe_stop();
-      status_.fault = true;
-      status_.first_fault = fault;
-      faulty_foot_sensor_ = fault.is_force_torque() ? fault.index : -1;
-    }
+  monitor_.update(raw, last_setpoint_, new_faults_);
+  for (int k = 0; k < new_faults_.count; ++k) {
+    if (!status_.fault) status_.first_fault = new_faults_.items[k];
+    status_.fault = true;
+    status_.faults.add(new_faults_.items[k]);
+    plan_.enter_safe_stop();
   }
-  // After the fault of one F/T sensor the stop keeps stabilizing with the others. After any other
-  // fault no sensor is trusted: the stop runs on the pattern and eq. (21) alone.
-  if (status_.fault && faulty_foot_sensor_ >= 0) {
-    substituted_sensors_ = raw;
-    substituted_sensors_.foot_wrench[faulty_foot_sensor_] = stabilizer_.desired()[faulty_foot_sensor_];
-    return substituted_sensors_;
+  const SensorHealth& h = health();
+  if (h.all_good()) {
+    last_time_ = raw.time;
+    return raw;
   }
-  return raw;
+  SensorData& s = substituted_sensors_;
+  s = raw;
+  if (!h.time) s.time = last_time_ + params_.rmrc.dt;
+  last_time_ = s.time;
+  for (int i = 0; i < model_.num_joints(); ++i) {
+    if (h.encoder_failed[i]) s.joint_position[i] = last_setpoint_[i];
+  }
+  if (!h.imu) {
+    const PatternSample& plan = plan_.sample();
+    s.imu_orientation = com_estimator_.upper_body_on_flat_foot(s.joint_position, plan.stance,
+                                                               plan.feet[index_of(plan.stance)].yaw);
+    s.imu_angular_rate.setZero();
+    s.imu_acceleration = s.imu_orientation.conjugate() * Eigen::Vector3d(0.0, 0.0, model_.gravity());
+  }
+  for (int k = 0; k < 2; ++k) {
+    if (!h.force_torque[k]) s.foot_wrench[k] = stabilizer_.desired()[k];
+  }
+  return s;
+}
+
+bool WalkingController::detect_fall(const SensorData& sensors) {
+  if (math::tilt_from_vertical(sensors.imu_orientation.toRotationMatrix()) <= params_.fall_tilt) return false;
+  plan_.enter_fallen();
+  return true;
 }
 
 void WalkingController::adapt_to_terrain(const SensorData& sensors) {
-  // Finding the ground needs both F/T sensors; after a fault the footholds keep their heights.
-  if (params_.stabilizer && !status_.fault) {
+  // Finding the ground needs both F/T sensors; without them the footholds keep their heights.
+  if (params_.stabilizer && both_force_sensors()) {
     // Where each standing foot's ground is, in the frame of the commanded heights: its height
     // modification (eq. 20) and its sole's deflection under the measured load (eq. 11).
     const auto& m = stabilizer_.modification();
@@ -108,7 +132,7 @@ void WalkingController::adapt_to_terrain(const SensorData& sensors) {
                   {m[0].offset[0] + compliance * std::max(0.0, sensors.foot_wrench[0].force.z()),
                    m[1].offset[0] + compliance * std::max(0.0, sensors.foot_wrench[1].force.z())});
   }
-  if (status_.fault) terrain_.hold(params_.rmrc.dt);
+  if (!both_force_sensors()) terrain_.hold(params_.rmrc.dt);
 }
 
 void WalkingController::stabilize(const SensorData& sensors) {

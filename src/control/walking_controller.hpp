@@ -7,9 +7,8 @@
 #include <array>
 
 #include "control/com_estimator.hpp"
-#include "control/frozen_signal_detector.hpp"
 #include "control/resolved_motion_rate_control.hpp"
-#include "control/sensor_check.hpp"
+#include "control/sensor_monitor.hpp"
 #include "control/stabilizer.hpp"
 #include "control/task_reference.hpp"
 #include "control/terrain_adaptation.hpp"
@@ -26,6 +25,8 @@ struct WalkingControllerParams {
   StabilizerParams stabilization;
   TerrainAdaptationParams terrain;  // used with the stabilizer (it needs the F/T sensors)
   SensorLimits sensor_limits;
+  // [rad] the upper body tilted this far from vertical (IMU) is beyond recovery: the fallen state.
+  double fall_tilt = 25.0 * M_PI / 180.0;
 };
 
 // Where a cycle's time goes (wall clock), for benchmarks and logs.
@@ -59,10 +60,14 @@ class WalkingController final : public Controller {
   Eigen::Matrix3d heading_frame() const;
 
  private:
-  // Plausibility and frozen-signal checks; the first fault starts the safe stop. Returns the
-  // readings the cycle works with: after the fault of one F/T sensor, that foot's reading is
-  // replaced by the wrench the controller asked for (no force error, feed-forward only).
+  // Every signal checked every cycle (control/sensor_monitor); a fault starts the safe stop.
+  // Returns the readings the cycle works with, each failed signal replaced by what the controller
+  // knows in its place: a failed F/T sensor reads the wrench the controller asked for (no force
+  // error, feed-forward only), a failed encoder its set-point, a failed IMU the upper body's
+  // orientation on a flat stance foot (no tilt feedback), a failed clock the last time plus Δt.
   const SensorData& detect_faults(const SensorData& raw);
+  // The upper body tilted beyond recovery: the fallen state.
+  bool detect_fall(const SensorData& sensors);
   // The footholds' and the CoM's heights from the F/T sensors (both needed).
   void adapt_to_terrain(const SensorData& sensors);
   // eqs. (10)–(20) with the state estimate: the feet's modification Δx_λ of eq. (21)'s reference.
@@ -70,8 +75,10 @@ class WalkingController final : public Controller {
   // eq. (21): the joint set-points, held when the rates come out non-finite.
   void resolve_rates(JointCommand& out);
   void publish_status();
-  // The stabilizer uses the sensors: on, and no fault but of one F/T sensor.
-  bool uses_sensors() const { return !status_.fault || faulty_foot_sensor_ >= 0; }
+  // The stabilizer works while one F/T sensor at least is healthy; finding the ground needs both.
+  bool uses_sensors() const { return health().force_torque[0] || health().force_torque[1]; }
+  bool both_force_sensors() const { return health().force_torque[0] && health().force_torque[1]; }
+  const SensorHealth& health() const { return monitor_.health(); }
 
   const RobotModel& model_;
   WalkingControllerParams params_;
@@ -82,14 +89,15 @@ class WalkingController final : public Controller {
   Stabilizer stabilizer_;
   TerrainAdaptation terrain_;
   CoMEstimator com_estimator_;
-  FrozenSignalDetector frozen_;
+  SensorMonitor monitor_;
+  FaultList new_faults_;
   ControllerStatus status_;
   CycleTiming timing_;
 
   double start_time_ = 0.0;
+  double last_time_ = 0.0;             // of the last trusted reading
   Eigen::VectorXd last_setpoint_;
-  int faulty_foot_sensor_ = -1;        // side index of a failed F/T sensor, −1: none
-  SensorData substituted_sensors_;     // the readings with the failed sensor replaced (preallocated)
+  SensorData substituted_sensors_;     // the readings with the failed signals replaced (preallocated)
 };
 
 }  // namespace biped

@@ -37,6 +37,8 @@ class WalkingPlan {
   const PatternSample& advance(double t, const WalkCommand& command);
   // A sensor fault: finish the step under way, put the feet side by side, stand.
   void enter_safe_stop() { fsm_.enter_safe_stop(); }
+  // The robot has fallen: advance() is not called any more.
+  void enter_fallen() { fsm_.enter_fallen(); }
 
   WalkingState state() const { return fsm_.state(); }
   const PatternSample& sample() const { return sample_; }

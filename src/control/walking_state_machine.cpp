@@ -9,6 +9,7 @@ const char* name_of(WalkingState state) {
     case WalkingState::Walking: return "walking";
     case WalkingState::Stopping: return "stopping";
     case WalkingState::SafeStop: return "safe_stop";
+    case WalkingState::Fallen: return "fallen";
   }
   return "unknown";
 }
@@ -43,12 +44,14 @@ StepDecision WalkingStateMachine::update(bool wants_to_walk, bool at_touchdown) 
         return StepDecision::Stand;
       }
       return StepDecision::None;
+    case WalkingState::Fallen:
+      return StepDecision::None;
   }
   return StepDecision::None;
 }
 
 void WalkingStateMachine::enter_safe_stop() {
-  if (state_ == WalkingState::SafeStop) return;
+  if (state_ == WalkingState::SafeStop || state_ == WalkingState::Fallen) return;
   stop_progress_ = state_;
   state_ = WalkingState::SafeStop;
 }

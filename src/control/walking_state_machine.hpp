@@ -5,9 +5,11 @@
 //   any ──(sensor fault)──► safe_stop: the controller stops using its sensors; a step under way is
 //   finished, one more step puts the feet side by side, and the robot stands (the pattern and
 //   eq. (21) need no sensors). Left only by a restart.
+//   any ──(upper body tilted beyond recovery)──► fallen: nothing is planned any more and the joints
+//   hold their last set-points (finite, inside the software limits). Left only by a restart.
 namespace biped {
 
-enum class WalkingState { Standing, Starting, Walking, Stopping, SafeStop };
+enum class WalkingState { Standing, Starting, Walking, Stopping, SafeStop, Fallen };
 
 const char* name_of(WalkingState state);
 
@@ -28,6 +30,7 @@ class WalkingStateMachine {
   // current plan's next touchdown has been reached.
   StepDecision update(bool wants_to_walk, bool at_touchdown);
   void enter_safe_stop();
+  void enter_fallen() { state_ = WalkingState::Fallen; }
 
  private:
   WalkingState state_ = WalkingState::Standing;

@@ -2,6 +2,8 @@
 // A sensor fault as the controller detected it: which signal, which check failed, and which side
 // or joint. Typed, so that a caller (or the controller itself) decides what a fault disables
 // without parsing text; describe() gives the text for logs.
+#include <array>
+
 namespace biped {
 
 enum class FaultSignal {
@@ -18,13 +20,15 @@ enum class FaultSignal {
 enum class FaultCheck {
   None,
   Implausible,  // not finite, or outside its physical range
-  Frozen,       // bit-identical readings for too many cycles
+  Frozen,       // bit-identical readings for too many cycles (an encoder: while its set-point moved)
+  Jump,         // an encoder reading that moved farther in one cycle than the joint can
 };
 
 struct Fault {
   FaultSignal signal = FaultSignal::None;
   FaultCheck check = FaultCheck::None;
   int index = -1;  // side or joint, see FaultSignal; −1 where neither applies
+  double time = 0.0;  // [s] the sensor time of the reading it was detected in
 
   explicit operator bool() const { return signal != FaultSignal::None; }
   bool is_force_torque() const { return signal == FaultSignal::ForceTorque; }
@@ -36,7 +40,8 @@ inline const char* describe(const Fault& f) {
   switch (f.signal) {
     case FaultSignal::None: return "";
     case FaultSignal::Time: return "time";
-    case FaultSignal::JointEncoder: return frozen ? "joint encoder frozen" : "joint encoder";
+    case FaultSignal::JointEncoder:
+      return frozen ? "joint encoder frozen" : f.check == FaultCheck::Jump ? "joint encoder jump" : "joint encoder";
     case FaultSignal::ImuOrientation: return "imu orientation";
     case FaultSignal::ImuAngularRate: return "imu angular rate";
     case FaultSignal::ImuAcceleration: return "imu acceleration";
@@ -47,5 +52,16 @@ inline const char* describe(const Fault& f) {
   }
   return "";
 }
+
+// Faults found in one reading (or latched over a run), at most kCapacity of them.
+struct FaultList {
+  static constexpr int kCapacity = 16;
+  std::array<Fault, kCapacity> items;
+  int count = 0;
+  void add(const Fault& f) {
+    if (count < kCapacity) items[count++] = f;
+  }
+  void clear() { count = 0; }
+};
 
 }  // namespace biped

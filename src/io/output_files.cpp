@@ -47,4 +47,22 @@ void prepare_output_directory(const std::string& dir) {
   fs::remove(probe, ec);
 }
 
+std::string keep_previous_run(const std::string& dir, const std::vector<std::string>& files, int keep) {
+  const fs::path base(dir);
+  bool any = false;
+  for (const std::string& f : files) any = any || fs::exists(base / f);
+  if (!any) return "";
+  const fs::path previous = base / "previous";
+  const auto slot = [&](int n) { return previous / std::to_string(n); };
+  fs::remove_all(slot(keep));
+  for (int n = keep - 1; n >= 1; --n) {
+    if (fs::exists(slot(n))) fs::rename(slot(n), slot(n + 1));
+  }
+  fs::create_directories(slot(1));
+  for (const std::string& f : files) {
+    if (fs::exists(base / f)) fs::rename(base / f, slot(1) / f);
+  }
+  return slot(1).string();
+}
+
 }  // namespace biped

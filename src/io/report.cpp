@@ -59,6 +59,18 @@ Eigen::Vector3d sole_point(const mjData* d, const FootInfo& foot, double x, doub
   return origin + math::mat_from_mujoco(d->site_xmat + 9 * foot.sensor_site) * Eigen::Vector3d(x, y, foot.sole_z);
 }
 
+// Text for an HTML element (the page's <title>).
+std::string html_text(const std::string& text) {
+  std::string out;
+  for (char c : text) {
+    if (c == '&') out += "&amp;";
+    else if (c == '<') out += "&lt;";
+    else if (c == '>') out += "&gt;";
+    else out += c;
+  }
+  return out;
+}
+
 }  // namespace
 
 ReportWriter::ReportWriter(const Simulation& sim, double replay_rate_hz)
@@ -310,7 +322,8 @@ void ReportWriter::write_html(std::ostream& out, const nlohmann::json& summary,
   }
   out << "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
       << "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n"
-      << "<title>biped run report</title>\n</head>\n<body>\n"
+      << "<title>" << html_text(summary.value("scenario", std::string("run")) + " (" + summary.value("robot", std::string("")) + ")")
+      << ": biped run report</title>\n</head>\n<body>\n"
       << "<script type=\"application/json\" id=\"report-data\">" << json << "</script>\n"
       << "<script>" << report_bundle() << "</script>\n</body>\n</html>\n";
 }

@@ -57,19 +57,33 @@ const ParameterTable<SimulationParams> kEncoderParameters = {
 };
 
 const ParameterTable<SensorNoiseParams> kSensorNoiseParameters = {
-    {"imu_orientation_noise_deg", Degrees<SensorNoiseParams>{&SensorNoiseParams::imu_orientation_noise_rad}, "deg",
-     kNonNegative, "IMU orientation: white noise, each axis"},
-    {"imu_orientation_bias_deg", Degrees<SensorNoiseParams>{&SensorNoiseParams::imu_orientation_bias_rad}, "deg",
-     kNonNegative, "IMU orientation: bias, constant per run, each axis"},
+    {"imu_misalignment_deg", Degrees<SensorNoiseParams>{&SensorNoiseParams::imu_misalignment_rad}, "deg",
+     kNonNegative, "IMU mounting misalignment against the upper body (roll, pitch, yaw)"},
     {"gyro_noise_rad_s", &SensorNoiseParams::gyro_noise_rad_s, "rad/s", kNonNegative, "gyroscope: white noise"},
-    {"gyro_bias_rad_s", &SensorNoiseParams::gyro_bias_rad_s, "rad/s", kNonNegative, "gyroscope: bias"},
+    {"gyro_bias_rad_s", &SensorNoiseParams::gyro_bias_rad_s, "rad/s", kNonNegative, "gyroscope: bias at the start"},
+    {"gyro_bias_walk", &SensorNoiseParams::gyro_bias_walk, "rad/s/√s", kNonNegative,
+     "gyroscope: random walk of the bias (not drawn: this rate)"},
     {"accel_noise_m_s2", &SensorNoiseParams::accel_noise_m_s2, "m/s²", kNonNegative, "accelerometer: white noise"},
     {"accel_bias_m_s2", &SensorNoiseParams::accel_bias_m_s2, "m/s²", kNonNegative, "accelerometer: bias"},
     {"ft_force_noise_n", &SensorNoiseParams::ft_force_noise_n, "N", kNonNegative, "F/T sensors: force white noise"},
-    {"ft_force_bias_n", &SensorNoiseParams::ft_force_bias_n, "N", kNonNegative, "F/T sensors: force bias"},
+    {"ft_force_bias_n", &SensorNoiseParams::ft_force_bias_n, "N", kNonNegative, "F/T sensors: force offset"},
     {"ft_torque_noise_nm", &SensorNoiseParams::ft_torque_noise_nm, "N·m", kNonNegative,
      "F/T sensors: torque white noise"},
-    {"ft_torque_bias_nm", &SensorNoiseParams::ft_torque_bias_nm, "N·m", kNonNegative, "F/T sensors: torque bias"},
+    {"ft_torque_bias_nm", &SensorNoiseParams::ft_torque_bias_nm, "N·m", kNonNegative, "F/T sensors: torque offset"},
+    {"ft_scale_error", &SensorNoiseParams::ft_scale_error, "", kNonNegative,
+     "F/T sensors: error of the gain, each axis (0.01: 1 %)"},
+    {"ft_force_drift_walk", &SensorNoiseParams::ft_force_drift_walk, "N/√s", kNonNegative,
+     "F/T sensors: random walk of the force offset (not drawn: this rate)"},
+    {"ft_torque_drift_walk", &SensorNoiseParams::ft_torque_drift_walk, "N·m/√s", kNonNegative,
+     "F/T sensors: random walk of the torque offset (not drawn: this rate)"},
+    {"ft_thermal_force_n", &SensorNoiseParams::ft_thermal_force_n, "N", kNonNegative,
+     "F/T sensors: force offset the warm-up adds"},
+    {"ft_thermal_torque_nm", &SensorNoiseParams::ft_thermal_torque_nm, "N·m", kNonNegative,
+     "F/T sensors: torque offset the warm-up adds"},
+    {"ft_thermal_time_s", &SensorNoiseParams::ft_thermal_time_s, "s", kPositive,
+     "F/T sensors: time constant of the warm-up (not drawn)"},
+    {"encoder_offset_deg", Degrees<SensorNoiseParams>{&SensorNoiseParams::encoder_offset_rad}, "deg", kNonNegative,
+     "joint encoders: zero-position calibration error"},
 };
 
 // controller
@@ -172,6 +186,15 @@ const ParameterTable<SensorLimits> kSensorLimitParameters = {
     {"encoder_margin", &SensorLimits::encoder_margin, "rad", kNonNegative, "out of range: encoder beyond the hard limits"},
     {"frozen_cycles", &SensorLimits::frozen_cycles, "", kNonNegative,
      "identical F/T or IMU readings in a row that mean a dead sensor (0: off)"},
+    {"encoder_jump", &SensorLimits::encoder_jump, "rad", kPositive,
+     "an encoder moving farther than this in one cycle has jumped"},
+    {"encoder_frozen_motion", &SensorLimits::encoder_frozen_motion, "rad", kPositive,
+     "an encoder identical for frozen_cycles while its set-point moved this far is frozen"},
+};
+
+const ParameterTable<WalkingControllerParams> kWalkingControllerParameters = {
+    {"fall_tilt_deg", Degrees<WalkingControllerParams>{&WalkingControllerParams::fall_tilt}, "deg", kPositive,
+     "walking controller: upper-body tilt (IMU) beyond recovery, the fallen state"},
 };
 
 const ParameterTable<TerrainAdaptationParams> kTerrainAdaptationParameters = {
@@ -210,6 +233,7 @@ ParameterSection controller_section(ControllerConfig& p) {
   WalkingControllerParams& w = p.walking;
   return {"controller",
           {{kControllerParameters, p},
+           {kWalkingControllerParameters, w},
            {kStepParameters, w.plan.step},
            {kWalkingPlanParameters, w.plan},
            {kRmrcParameters, w.rmrc},
@@ -290,7 +314,7 @@ void read_controller(const YamlReader& r, const YAML::Node& c, ControllerConfig&
 void read_robot_file(const std::string& file, RunConfig& config) {
   const YAML::Node root = load_yaml_file(file);
   const YamlReader r(file);
-  r.expect_keys(root, "", {"model", "simulation", "drives", "encoders", "sensor_noise", "controller"});
+  r.expect_keys(root, "", {"model", "simulation", "drives", "encoders", "sensors", "sensor_noise", "controller"});
   config.sim.world.robot_mjcf = resolve(r.text(root, "", "model"), file);
   if (!fs::exists(config.sim.world.robot_mjcf)) {
     r.fail(root["model"], "model", "no such file: " + config.sim.world.robot_mjcf);
@@ -306,6 +330,7 @@ void read_robot_file(const std::string& file, RunConfig& config) {
     config.sim.encoder_bits_of[joint] = *read_integer(r, per_joint, "encoders.bits_of", joint.c_str(), kPositive);
   }
 
+  read_sensor_settings(r, r.mapping(root, "", "sensors"), false, config.sim);
   read_section(r, r.mapping(root, "", "sensor_noise"), sensor_noise_section(config.sim.noise_levels));
   read_controller(r, r.mapping(root, "", "controller"), config.controller);
 }
@@ -367,8 +392,12 @@ RunConfig make_run_config(const Scenario& s) {
   config.sim.world.terrain = s.terrain;
   config.sim.world.model_error = s.model_error;
   config.sim.pushes = s.pushes;
-  config.sim.sensor_noise = s.sensor_noise;
-  config.sim.sensor_delay_cycles = s.sensor_delay_cycles;
+  read_sensor_settings(r, s.sensors, true, config.sim);
+  if (s.ideal_sensors) {
+    config.sim.sensor_noise = false;
+    config.sim.sensor_delay_cycles = 0;
+    config.sim.sensor_errors = SensorErrorSpec{};
+  }
   config.sim.faults = s.faults;
   config.sim.seed = s.seed;
   config.sim.software_limit_margin_rad = config.controller.software_limit_margin_rad;

@@ -65,6 +65,7 @@ RunRecorder::RunRecorder(const Simulation& sim, std::ostream* csv) : csv_(csv) {
     const std::string p = name_of(side);
     o << ',' << p << "_foot_x," << p << "_foot_z," << p << "_foot_pitch_deg," << p << "_terrain_dz," << p << "_terrain_tilt_deg";
   }
+  o << ",imu_phi_x_deg,imu_phi_y_deg";
   for (int i = 0; i < sim.plant().mj()->nq; ++i) o << ",qpos_" << i;
   o << '\n';
 }
@@ -90,12 +91,20 @@ void RunRecorder::record(const Simulation& sim, const SensorData& sensors, const
   final_yaw_ = yaw;
   max_tilt_ = std::max(max_tilt_, math::tilt_from_vertical(upper_body));
   samples_.push_back({d->time, base[2], tilt.sagittal, tilt.lateral});
+  const bool fallen = sim.fall_reason() != nullptr;
+  if (status.fault && !fault_seen_) {
+    fault_seen_ = true;
+    fault_time_ = d->time;
+    fault_after_fall_ = fallen;
+  }
+  command_saturated_ = command_saturated_ || status.command_saturated;
+  // Steps end at the fall: a fallen robot's feet bouncing on the ground are not steps.
   for (Side side : kSides) {
     const int k = index_of(side);
     const double force = sim.foot_contact_force(side);
     if (!in_contact_[k] && force > kContactOnN) {
       in_contact_[k] = true;
-      ++touchdowns_;
+      if (!fallen) ++touchdowns_;
     } else if (in_contact_[k] && force < kContactOffN) {
       in_contact_[k] = false;
     }
@@ -129,6 +138,9 @@ void RunRecorder::record(const Simulation& sim, const SensorData& sensors, const
     row.comma().fixed(status.foot_height_offset[index_of(side)], 5);
     row.comma().fixed(status.foot_tilt[index_of(side)] * kRadToDeg, 3);
   }
+  // The upper body's tilt as the controller's IMU reading has it (attitude filter, errors, delay).
+  const math::TiltAngles measured = math::tilt_against_gravity(sensors.imu_orientation.toRotationMatrix());
+  row.comma().fixed(measured.sagittal * kRadToDeg, 4).comma().fixed(measured.lateral * kRadToDeg, 4);
   for (int i = 0; i < m->nq; ++i) row.comma().general(d->qpos[i], 7);
   row_ += '\n';
   *csv_ << row_;
@@ -167,7 +179,15 @@ nlohmann::json RunRecorder::summary(const std::string& robot, const std::string&
                                                               : *std::max_element(result.cycle_us.begin(),
                                                                                   result.cycle_us.end())}};
   j["final_state"] = final_status.state;
-  j["fault"] = final_status.fault ? nlohmann::json(describe(final_status.first_fault)) : nlohmann::json(nullptr);
+  // A fall's impact trips the controller's sensor checks (typically the IMU's acceleration): such a
+  // fault is a consequence, not the cause, and is reported apart.
+  const bool fault = final_status.fault;
+  const bool after_fall = fault_seen_ ? fault_after_fall_ : result.fell;  // not logged yet: at the very end
+  const auto text_if = [&](bool b) { return b ? nlohmann::json(describe(final_status.first_fault)) : nlohmann::json(nullptr); };
+  j["fault"] = text_if(fault && !after_fall);
+  j["fault_after_fall"] = text_if(fault && after_fall);
+  j["fault_time_s"] = fault && fault_seen_ ? nlohmann::json(fault_time_) : nlohmann::json(nullptr);
+  j["command_saturated"] = command_saturated_;
   return j;
 }
 

@@ -18,7 +18,10 @@ class RunRecorder final : public RunObserver {
   void record(const Simulation& sim, const SensorData& sensors, const JointCommand& setpoints,
               const ControllerStatus& status, double cycle_us) override;
 
-  // summary.json as in DESIGN.md, plus a few extra keys.
+  // summary.json as in DESIGN.md, plus a few extra keys. `steps` counts touchdowns up to the fall;
+  // `fault` is the controller's first sensor fault if it came before the fall (or with no fall),
+  // `fault_after_fall` if it came after (a fall's impact trips the checks); `fault_time_s` when it
+  // was first logged; `command_saturated` whether the walk command was clamped to the limits.
   nlohmann::json summary(const std::string& robot, const std::string& scenario, const RunResult& result,
                          const ControllerStatus& final_status) const;
 
@@ -41,6 +44,9 @@ class RunRecorder final : public RunObserver {
   bool started_ = false;
   bool in_contact_[2] = {true, true};
   int touchdowns_ = 0;
+  bool fault_seen_ = false, fault_after_fall_ = false;
+  double fault_time_ = 0.0;
+  bool command_saturated_ = false;
   std::string row_;  // the log.csv row being written
 };
 

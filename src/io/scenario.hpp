@@ -23,12 +23,19 @@ struct Scenario {
   std::vector<Push> pushes;
   std::vector<TerrainFeature> terrain;
   ModelErrorSpec model_error;
-  bool sensor_noise = false;
-  int sensor_delay_cycles = 0;
+  YAML::Node sensors;  // its `sensors` section, applied over the robot file's (read_sensor_settings)
+  bool ideal_sensors = false;  // sensors.ideal: every sensor error off, whatever else is set
   std::vector<SensorFault> faults;
   YAML::Node controller;  // overrides of the robot parameter file's `controller` section
   YAML::Node simulation;  // overrides of its `simulation` section
 };
+
+class YamlReader;
+
+// Reads a `sensors` section (a scenario's, `scenario`, or a robot file's, which has no `ideal` and no
+// `faults`): the keys given replace those in `into`, the others stay. Throws InputError naming the
+// file and the key.
+void read_sensor_settings(const YamlReader& r, const YAML::Node& sensors, bool scenario, SimulationParams& into);
 
 // Reads and checks a scenario file after applying the `--set KEY=VALUE` overrides; throws
 // InputError with one line naming the file and the key (and line) at fault.

@@ -110,7 +110,8 @@ struct VideoRecorder::Gl {
     mjv_makeScene(model, &scene, 2000);
     scene_made = true;
     mjr_defaultContext(&context_mj);
-    mjr_makeContext(model, &context_mj, mjFONTSCALE_100);
+    // The overlay's font grows with the picture (MuJoCo's scales: 100 %, 150 %, 200 %).
+    mjr_makeContext(model, &context_mj, o.height >= 960 ? mjFONTSCALE_200 : o.height >= 720 ? mjFONTSCALE_150 : mjFONTSCALE_100);
     context_made = true;
     mjr_setBuffer(mjFB_OFFSCREEN, &context_mj);
     if (context_mj.currentBuffer != mjFB_OFFSCREEN || context_mj.offWidth != o.width ||
@@ -197,7 +198,7 @@ struct VideoRecorder::Gl {
     camera.lookat[2] = lookat_z;
   }
 
-  void render(const mjData* sim_data, const VideoOptions& o, std::vector<unsigned char>& rgb) {
+  void render(const mjData* sim_data, const VideoOptions& o, const std::string& state, std::vector<unsigned char>& rgb) {
     mju_copy(data->qpos, sim_data->qpos, model->nq);
     data->time = sim_data->time;
     mj_kinematics(model, data);
@@ -206,6 +207,10 @@ struct VideoRecorder::Gl {
     mjv_updateScene(model, data, &option, nullptr, &camera, mjCAT_ALL, &scene);
     const mjrRect viewport{0, 0, o.width, o.height};
     mjr_render(viewport, &scene, &context_mj);
+    // Simulated time and the controller's state, top left (MuJoCo's overlay: text on a dark box).
+    char values[96];
+    std::snprintf(values, sizeof(values), "%.2f s\n%s", sim_data->time, state.empty() ? "-" : state.c_str());
+    mjr_overlay(mjFONT_NORMAL, mjGRID_TOPLEFT, viewport, "time\nstate", values, &context_mj);
     mjr_readPixels(bottom_up.data(), nullptr, viewport, &context_mj);
     // OpenGL's rows run bottom to top; video rows top to bottom.
     const std::size_t row = static_cast<std::size_t>(3 * o.width);
@@ -310,7 +315,7 @@ void VideoRecorder::cycle_start(const Simulation& sim) {
 
 void VideoRecorder::render(const Simulation& sim, std::vector<unsigned char>& rgb) {
   const auto start = std::chrono::steady_clock::now();
-  gl_->render(sim.data(), options_, rgb);
+  gl_->render(sim.data(), options_, state_, rgb);
   render_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 

@@ -42,11 +42,15 @@ class VideoRecorder final : public RunObserver {
   VideoRecorder(const VideoRecorder&) = delete;
   VideoRecorder& operator=(const VideoRecorder&) = delete;
 
-  void record(const Simulation&, const SensorData&, const JointCommand&, const ControllerStatus&, double) override {}
+  // Keeps the controller's state for the frames' overlay.
+  void record(const Simulation&, const SensorData&, const JointCommand&, const ControllerStatus& status, double) override {
+    state_ = status.state;
+  }
   // Renders every frame that falls due at the simulator's current time.
   void cycle_start(const Simulation& sim) override;
 
-  // Renders the simulator's state now into rgb (width × height × 3 bytes, top row first).
+  // Renders the simulator's state now into rgb (width × height × 3 bytes, top row first), with the
+  // simulated time and the controller's last recorded state written at the top left.
   void render(const Simulation& sim, std::vector<unsigned char>& rgb);
 
   // Ends the stream, waits for ffmpeg and renames the file to its final name; throws VideoError.
@@ -67,6 +71,7 @@ class VideoRecorder final : public RunObserver {
   std::string codec_;
   std::unique_ptr<Gl> gl_;
   std::vector<unsigned char> frame_;
+  std::string state_;  // the controller's FSM state at the last record()
   int frames_ = 0;
   double render_seconds_ = 0.0;
   int pipe_fd_ = -1;

@@ -180,6 +180,17 @@ Eigen::Vector3d YamlReader::vector3_or(const YAML::Node& map, const std::string&
   return map[key] ? vector3(map, where, key) : fallback;
 }
 
+Eigen::VectorXd YamlReader::numbers(const YAML::Node& map, const std::string& where, const char* key, int n) const {
+  const YAML::Node node = map[key];
+  if (!node) fail(map, join(where, key), "missing (required)");
+  if (!node.IsSequence() || static_cast<int>(node.size()) != n) {
+    fail(node, join(where, key), "expected a list of " + std::to_string(n) + " numbers");
+  }
+  Eigen::VectorXd v(n);
+  for (int i = 0; i < n; ++i) v[i] = finite(node[i], join(where, key));
+  return v;
+}
+
 YAML::Node YamlReader::sequence(const YAML::Node& map, const std::string& where, const char* key) const {
   const YAML::Node node = map[key];
   if (!node || node.IsNull()) return YAML::Node(YAML::NodeType::Sequence);

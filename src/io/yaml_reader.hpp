@@ -44,6 +44,8 @@ class YamlReader {
   Eigen::Vector3d vector3(const YAML::Node& map, const std::string& where, const char* key) const;
   Eigen::Vector3d vector3_or(const YAML::Node& map, const std::string& where, const char* key,
                              const Eigen::Vector3d& fallback) const;
+  // A list of exactly n finite numbers.
+  Eigen::VectorXd numbers(const YAML::Node& map, const std::string& where, const char* key, int n) const;
   // A sequence (empty when the key is absent).
   YAML::Node sequence(const YAML::Node& map, const std::string& where, const char* key) const;
   // A mapping (null when the key is absent).

@@ -37,6 +37,7 @@ SensorEmulationParams sensor_params(const SimulationParams& p, const RobotModel&
   }
   s.noise = p.sensor_noise;
   s.noise_levels = p.noise_levels;
+  s.errors = p.sensor_errors;
   s.delay_cycles = p.sensor_delay_cycles;
   s.faults = p.faults;
   s.seed = p.seed;
@@ -76,17 +77,13 @@ Simulation::Simulation(const SimulationParams& params, const RobotModel& control
       sensors_(plant_, plant_joint_of_, sensor_params(params, plant_)),
       sole_contact_(plant_, terrain_, params.sole_contact),
       collision_gate_(model_, terrain_),
+      pushes_(plant_, params.pushes),
       plant_setpoint_(plant_.stand_pose()),
       fall_detector_(plant_, terrain_, 1.0) {
   const double ratio = params.control_period / params.world.timestep;
   steps_per_period_ = static_cast<int>(std::lround(ratio));
   if (steps_per_period_ < 1 || std::abs(ratio - steps_per_period_) > 1e-9) {
     throw ModelError("the control period must be a whole number of physics steps");
-  }
-  for (const Push& push : params.pushes) {
-    const int body = mj_name2id(plant_.mj(), mjOBJ_BODY, push.body.c_str());
-    if (body < 0) throw ModelError(plant_.path() + ": push on unknown body '" + push.body + "'");
-    push_body_.push_back(body);
   }
   reset();
 }
@@ -104,6 +101,7 @@ void Simulation::reset() {
   const double sink = plant_.total_mass() * std::abs(m->opt.gravity[2]) / (2.0 * params_.sole_contact.stiffness_per_foot);
   d->qpos[2] -= sole_clearance(plant_, d, terrain_) + sink;
   sole_contact_.reset();
+  sensors_.reset();
   mj_forward(m, d);
   sole_contact_.apply(m, d);
   mj_forward(m, d);  // sensors now see the contact forces
@@ -113,6 +111,8 @@ void Simulation::reset() {
   drives_.reset();
   drives_.set_targets(plant_setpoint_, params_.control_period);
   collision_gate_.reset(m, d);
+  gait_.reset();
+  pushes_.reset();
   fall_reason_ = nullptr;
   fall_time_ = 0.0;
 }
@@ -131,12 +131,9 @@ void Simulation::advance() {
     if (params_.collision_gate) collision_gate_.update(m, d);
     mj_step1(m, d);
     mju_zero(d->xfrc_applied, 6 * m->nbody);
-    for (std::size_t k = 0; k < params_.pushes.size(); ++k) {
-      const Push& push = params_.pushes[k];
-      if (d->time >= push.t - 1e-9 && d->time < push.t + push.duration - 1e-9) {
-        for (int a = 0; a < 3; ++a) d->xfrc_applied[6 * push_body_[k] + a] += push.force[a];
-      }
-    }
+    // The gait events from the last step's sole forces, then the pushes they time.
+    gait_.update(d->time, {sole_contact_.normal_force(Side::Left), sole_contact_.normal_force(Side::Right)});
+    pushes_.apply(d, gait_);
     sole_contact_.apply(m, d);
     drives_.apply(m, d, m->opt.timestep);
     mj_step2(m, d);

@@ -13,6 +13,7 @@
 #include "interface/sensor_data.hpp"
 #include "model/robot_model.hpp"
 #include "sim/collision_gate.hpp"
+#include "sim/disturbances.hpp"
 #include "sim/fall_detection.hpp"
 #include "sim/joint_drives.hpp"
 #include "sim/sensor_emulation.hpp"
@@ -20,13 +21,6 @@
 #include "sim/world.hpp"
 
 namespace biped {
-
-struct Push {
-  double t = 0.0;                  // [s] start
-  double duration = 0.1;           // [s]
-  std::string body = "upper_body";
-  Eigen::Vector3d force = Eigen::Vector3d::Zero();  // [N] world frame, at the body's CoM
-};
 
 // Software joint limits = hard limits minus this (robots.md); the one default of the simulated
 // robot's and the controller's margin (make_run_config gives the simulation the controller's).
@@ -41,6 +35,7 @@ struct SimulationParams {
   std::map<std::string, int> encoder_bits_of;  // per joint name, overrides the default
   bool sensor_noise = false;
   SensorNoiseParams noise_levels;
+  SensorErrorSpec sensor_errors;  // explicit errors and the IMU's attitude filter (default: ideal)
   int sensor_delay_cycles = 0;
   std::vector<SensorFault> faults;
   std::vector<Push> pushes;
@@ -76,6 +71,9 @@ class Simulation {
   const Terrain& terrain() const { return terrain_; }
   const SoleContact& sole_contact() const { return sole_contact_; }
   const CollisionGate& collision_gate() const { return collision_gate_; }
+  // Touchdowns and single supports of the ground truth, and when each push started.
+  const GaitEvents& gait_events() const { return gait_; }
+  const PushSchedule& pushes() const { return pushes_; }
   // Ground-truth normal contact force on a foot [N].
   double foot_contact_force(Side side) const;
   double standing_pelvis_height() const { return standing_pelvis_height_; }
@@ -98,7 +96,8 @@ class Simulation {
   SensorEmulation sensors_;
   SoleContact sole_contact_;
   CollisionGate collision_gate_;
-  std::vector<int> push_body_;
+  GaitEvents gait_;
+  PushSchedule pushes_;
   Eigen::VectorXd plant_setpoint_;
   int steps_per_period_ = 1;
   double standing_pelvis_height_ = 0.0;

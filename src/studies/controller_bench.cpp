@@ -2,6 +2,10 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <ctime>
+#include <fstream>
+#include <thread>
 
 #include "control/resolved_motion_rate_control_svd.hpp"
 #include "control/walking_controller.hpp"
@@ -46,8 +50,9 @@ nlohmann::json run_controller_bench(const ControllerBenchOptions& options, const
   controller.reset(sensors);
   WalkCommand command;
   const double period = config.sim.control_period;
-  const long cycles = static_cast<long>(options.duration / period);
-  std::vector<double> whole, stabilizer, rmrc, baseline;
+  const long cycles = std::lround(options.duration / period);  // as the closed loop counts them
+  std::vector<double> whole, stabilizer, rmrc, baseline, physics;
+  physics.reserve(cycles);
   whole.reserve(cycles);
   stabilizer.reserve(cycles);
   rmrc.reserve(cycles);
@@ -74,7 +79,10 @@ nlohmann::json run_controller_bench(const ControllerBenchOptions& options, const
     baseline.push_back(std::chrono::duration<double, std::micro>(Clock::now() - svd_start).count());
     const auto sim_start = Clock::now();
     sim.command(out);
+    const auto advance_start = Clock::now();
     sim.advance();
+    physics.push_back(std::chrono::duration<double, std::micro>(Clock::now() - advance_start).count() /
+                      sim.physics_steps_per_control_period());
     sim.read_sensors(sensors);
     loop_wall += std::chrono::duration<double>(Clock::now() - sim_start).count() +
                  std::chrono::duration<double>(end - start).count();
@@ -90,7 +98,35 @@ nlohmann::json run_controller_bench(const ControllerBenchOptions& options, const
   j["speedup_vs_svd"] = j["svd_baseline_us"]["median"].get<double>() / j["rmrc_us"]["median"].get<double>();
   j["allocations_per_cycle"] = static_cast<double>(cycle_allocations) / static_cast<double>(std::max(1L, cycles));
   j["realtime_factor"] = loop_wall > 0.0 ? sim.time() / loop_wall : 0.0;
+  // Machine-independent figures: the cycle against one physics step of the same robot on the same
+  // machine, as eq. (21)'s speed-up against explicit SVD is.
+  j["physics_step_us"] = stats(physics);
+  j["cycle_per_physics_step"] = j["cycle_us"]["median"].get<double>() / j["physics_step_us"]["median"].get<double>();
+  j["cpu_model"] = cpu_model();
+  j["hardware_threads"] = std::thread::hardware_concurrency();
+  j["date"] = utc_date();
   return j;
+}
+
+std::string cpu_model() {
+  std::ifstream in("/proc/cpuinfo");
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.rfind("model name", 0) == 0) {
+      const std::size_t colon = line.find(':');
+      if (colon != std::string::npos) return line.substr(line.find_first_not_of(" \t", colon + 1));
+    }
+  }
+  return "unknown";
+}
+
+std::string utc_date() {
+  const std::time_t now = std::time(nullptr);
+  std::tm utc{};
+  gmtime_r(&now, &utc);
+  char text[32];
+  std::strftime(text, sizeof(text), "%Y-%m-%dT%H:%M:%SZ", &utc);
+  return text;
 }
 
 }  // namespace biped

@@ -1,5 +1,7 @@
 #include "studies/scenario_runner.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <utility>
 #include <vector>
@@ -34,6 +36,28 @@ class Observers final : public RunObserver {
   std::vector<RunObserver*> all_;
 };
 
+// The axes of the walk command beyond the limits (vx_max: the step table's fastest row): the most
+// extreme commanded value and the limit it was clamped to, e.g. {"vx": {"commanded": 1.1, "limit":
+// 1.0}}; empty when the commands stay inside.
+nlohmann::json commands_beyond_limits(const std::vector<TimedCommand>& commands, const CommandLimits& limits) {
+  nlohmann::json beyond = nlohmann::json::object();
+  auto check = [&](const char* axis, double commanded, double limit, bool exceeded) {
+    if (!exceeded) return;
+    if (!beyond.contains(axis) || std::abs(commanded) > std::abs(beyond[axis]["commanded"].get<double>())) {
+      beyond[axis] = {{"commanded", commanded}, {"limit", limit}};
+    }
+  };
+  for (const TimedCommand& c : commands) {
+    if (c.command.stop) continue;
+    check("vx", c.command.vx, limits.vx_max, c.command.vx > limits.vx_max);
+    check("vx", c.command.vx, limits.vx_min, c.command.vx < limits.vx_min);
+    check("vy", c.command.vy, std::copysign(limits.vy_max, c.command.vy), std::abs(c.command.vy) > limits.vy_max);
+    check("omega", c.command.omega, std::copysign(limits.omega_max, c.command.omega),
+          std::abs(c.command.omega) > limits.omega_max);
+  }
+  return beyond;
+}
+
 }  // namespace
 
 RobotModel load_controller_model(const RunConfig& config) {
@@ -49,9 +73,19 @@ std::unique_ptr<Controller> make_controller(const RunConfig& config, const Robot
 void check_scenario_against_model(const Scenario& s, const RobotModel& model) {
   for (std::size_t i = 0; i < s.faults.size(); ++i) {
     const std::string& name = s.faults[i].sensor;
-    if (name != "ft_left" && name != "ft_right" && name != "imu" && model.joint_index(name) < 0) {
+    const bool known = std::find(kNonJointSensors.begin(), kNonJointSensors.end(), name) != kNonJointSensors.end();
+    if (!known && model.joint_index(name) < 0) {
       throw InputError(s.file + ": key 'sensors.faults." + std::to_string(i) + ".sensor': unknown sensor '" + name +
-                       "' (ft_left, ft_right, imu, or a joint name)");
+                       "' (ft_left, ft_right, imu, imu_orientation, imu_gyro, imu_accel, or a joint name)");
+    }
+  }
+  // Absent keys give invalid nodes, which only say false.
+  const YAML::Node encoders = s.sensors && s.sensors.IsMap() ? s.sensors["encoders"] : YAML::Node();
+  const YAML::Node offsets = encoders && encoders.IsMap() ? encoders["offset_deg"] : YAML::Node();
+  for (const auto& entry : offsets) {
+    const std::string joint = entry.first.Scalar();
+    if (model.joint_index(joint) < 0) {
+      throw InputError(s.file + ": key 'sensors.encoders.offset_deg." + joint + "': unknown joint '" + joint + "'");
     }
   }
   for (std::size_t i = 0; i < s.pushes.size(); ++i) {
@@ -63,7 +97,7 @@ void check_scenario_against_model(const Scenario& s, const RobotModel& model) {
 }
 
 ScenarioResult run_scenario(const Scenario& scenario, const RunConfig& config, const std::string& out_dir,
-                            RunObserver* extra_observer, const VideoOptions* video) {
+                            RunObserver* extra_observer, const VideoOptions* video, bool keep_previous) {
   const RobotModel model = load_controller_model(config);
   check_scenario_against_model(scenario, model);
   Simulation sim(config.sim, model);
@@ -92,6 +126,9 @@ ScenarioResult run_scenario(const Scenario& scenario, const RunConfig& config, c
   result.summary = recorder.summary(config.robot, scenario.name, result.run, controller->status());
   result.summary["seed"] = scenario.seed;
   result.summary["controller"] = config.controller.type;
+  if (config.controller.type == "walking") {
+    result.summary["command_beyond_limits"] = commands_beyond_limits(scenario.commands, config.controller.walking.plan.limits);
+  }
   if (video_recorder) {
     video_recorder->commit();
     result.summary["video"] = {{"file", video->path},
@@ -104,6 +141,9 @@ ScenarioResult run_scenario(const Scenario& scenario, const RunConfig& config, c
   if (summary_file) {
     summary_file->stream() << result.summary.dump(2) << '\n';
     report->write_html(report_file->stream(), result.summary, result.run.cycle_us);
+    if (keep_previous) {
+      result.previous_run_dir = keep_previous_run(out_dir, {"summary.json", "log.csv", "report.html"}, kPreviousRunsKept);
+    }
     log_file->commit();
     summary_file->commit();
     report_file->commit();

@@ -23,13 +23,20 @@ void check_scenario_against_model(const Scenario& scenario, const RobotModel& mo
 struct ScenarioResult {
   nlohmann::json summary;
   RunResult run;
+  std::string previous_run_dir;  // where an earlier run's files were moved (keep_previous), or ""
 };
 
+// How many earlier runs `keep_previous` keeps.
+inline constexpr int kPreviousRunsKept = 5;
+
 // Runs the scenario. With a non-empty `out_dir`, writes summary.json, log.csv and report.html there,
-// each whole or not at all; with `video`, also renders the run to that .mp4 (whole or not at all; the
-// summary then has a "video" entry). Throws InputError / ModelError for bad input and VideoError when
-// the video cannot be made, before anything is simulated and before any file is created.
+// each whole or not at all; with `keep_previous`, an earlier run's files there are first moved into
+// out_dir/previous/1/ (keep_previous_run()), once the new ones are complete. With `video`, also renders
+// the run to that .mp4 (whole or not at all; the summary then has a "video" entry). Throws InputError /
+// ModelError for bad input and VideoError when the video cannot be made, before anything is simulated
+// and before any file is created.
 ScenarioResult run_scenario(const Scenario& scenario, const RunConfig& config, const std::string& out_dir,
-                            RunObserver* extra_observer = nullptr, const VideoOptions* video = nullptr);
+                            RunObserver* extra_observer = nullptr, const VideoOptions* video = nullptr,
+                            bool keep_previous = false);
 
 }  // namespace biped

@@ -1,6 +1,7 @@
 #include "studies/speed_sweep.hpp"
 
 #include <cmath>
+#include <cstdio>
 
 #include "io/yaml_reader.hpp"
 #include "studies/scenario_runner.hpp"
@@ -35,7 +36,8 @@ class HoldPhaseObserver final : public RunObserver {
 
 }  // namespace
 
-nlohmann::json run_speed_sweep(const Scenario& base, const RunConfig& config, const SpeedSweepOptions& options) {
+nlohmann::json run_speed_sweep(const Scenario& base, const RunConfig& config, const SpeedSweepOptions& options,
+                               std::ostream* progress) {
   if (!(options.step > 0.0) || !(options.from > 0.0) || options.to < options.from) {
     throw InputError("speed-sweep: need 0 < --from <= --to and --step > 0");
   }
@@ -58,13 +60,23 @@ nlohmann::json run_speed_sweep(const Scenario& base, const RunConfig& config, co
     HoldPhaseObserver observer(hold_start);
     const ScenarioResult r = run_scenario(scenario, config, "", &observer);
     const bool fell = r.summary["fell"].get<bool>();
+    const double limit = config.controller.walking.plan.limits.vx_max;
     runs.push_back({{"commanded_mps", speed},
                     {"fell", fell},
                     {"fall_time_s", r.summary["fall_time_s"]},
                     {"walked_mps", fell ? nlohmann::json(nullptr) : nlohmann::json(observer.speed())},
                     {"command_saturated", observer.saturated()},
+                    {"limit_mps", observer.saturated() ? nlohmann::json(limit) : nlohmann::json(nullptr)},
                     {"upper_body_tilt_deg", r.summary["upper_body_tilt_deg"]}});
     if (!fell && !observer.saturated()) fastest = speed;
+    if (progress) {
+      char line[256];
+      int n = std::snprintf(line, sizeof(line), "speed-sweep %d/%d: commanded %.2f m/s: ", i + 1, count, speed);
+      n += fell ? std::snprintf(line + n, sizeof(line) - n, "FELL at %.3f s", r.summary["fall_time_s"].get<double>())
+                : std::snprintf(line + n, sizeof(line) - n, "walked %.2f m/s", observer.speed());
+      if (observer.saturated()) std::snprintf(line + n, sizeof(line) - n, " (saturated to the limit %.2f m/s)", limit);
+      *progress << line << std::endl;
+    }
   }
   return {{"robot", config.robot},
           {"scenario", base.name},

@@ -336,7 +336,8 @@ TEST_P(ContactModelTest, GeneralMapIsCloseToThePerFootStiffnessWhileWalking) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Robots, ContactModelTest, ::testing::Values("lola", "johnnie"));
+INSTANTIATE_TEST_SUITE_P(Robots, ContactModelTest, ::testing::Values("lola", "johnnie"),
+                         [](const ::testing::TestParamInfo<std::string>& info) { return info.param; });
 
 }  // namespace
 }  // namespace biped

@@ -46,7 +46,8 @@ TEST_P(WeightShift, LiftsTheOtherFootWithoutFalling) {
   EXPECT_LT(obs.max_tilt, 10.0 * M_PI / 180.0);
 }
 
-INSTANTIATE_TEST_SUITE_P(Robots, WeightShift, ::testing::Values("lola", "johnnie"));
+INSTANTIATE_TEST_SUITE_P(Robots, WeightShift, ::testing::Values("lola", "johnnie"),
+                         [](const ::testing::TestParamInfo<std::string>& info) { return info.param; });
 
 }  // namespace
 }  // namespace biped

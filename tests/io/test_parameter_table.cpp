@@ -135,8 +135,8 @@ TEST(ParameterTable, RobotParameterDefaultsAreTheStructs) {
   EXPECT_EQ(row_of(rows, "controller.sensor_limits.frozen_cycles").default_value,
             std::to_string(SensorLimits{}.frozen_cycles));
   EXPECT_EQ(row_of(rows, "controller.software_limit_margin_deg").default_value, "5");
-  EXPECT_EQ(row_of(rows, "sensor_noise.imu_orientation_noise_deg").default_value,
-            number_text(SensorNoiseParams{}.imu_orientation_noise_rad * 180.0 / M_PI));
+  EXPECT_EQ(row_of(rows, "sensor_noise.imu_misalignment_deg").default_value,
+            number_text(SensorNoiseParams{}.imu_misalignment_rad * 180.0 / M_PI));
 }
 
 // docs/scenarios.md holds the output of `biped params --markdown` between the markers.

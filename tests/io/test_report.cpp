@@ -68,6 +68,7 @@ TEST_F(StandingRun, PageHoldsTheBundleAndTheDataParsesBack) {
   EXPECT_EQ(html.rfind("<!DOCTYPE html>", 0), 0u);
   EXPECT_NE(html.find(report_bundle()), std::string::npos);
   EXPECT_EQ(html.find("src=\"http"), std::string::npos) << "nothing is loaded from elsewhere";
+  EXPECT_NE(html.find("<title>lola-stand (lola): biped run report</title>"), std::string::npos) << "the scenario names the page";
 
   const json data = data_of_page(html);
   EXPECT_EQ(data["summary"], summary);
@@ -121,6 +122,7 @@ TEST_F(StandingRun, StringsCannotEndTheDataElement) {
   const std::size_t data_end = html.find("</script>", data_start);
   EXPECT_EQ(html.find("<!--"), std::string::npos);
   EXPECT_EQ(data_of_page(html)["summary"]["scenario"], hostile);
+  EXPECT_NE(html.find("<title>a&lt;/script&gt;&lt;script&gt;alert(1)"), std::string::npos) << "escaped in the title";
   EXPECT_EQ(html.find("<script>", data_start + kDataOpen.size()), data_end + 10) << "only the viewer script follows";
 }
 

@@ -200,13 +200,13 @@ class CustomRobotFile : public ::testing::Test {
 
 TEST_F(CustomRobotFile, ValuesApplyAndDegreesConvert) {
   const RunConfig c = read("drives: {bandwidth_hz: 18}\nencoders: {bits: 16, bits_of: {left_toe: 14}}\n"
-                           "sensor_noise: {imu_orientation_noise_deg: 0.5, gyro_noise_rad_s: 0.01}\n");
+                           "sensor_noise: {imu_misalignment_deg: 0.5, gyro_noise_rad_s: 0.01}\n");
   EXPECT_EQ(c.sim.drives.bandwidth_hz, 18.0);
   EXPECT_EQ(c.sim.drives.integral_ratio, DriveParams{}.integral_ratio);
   EXPECT_EQ(c.sim.encoder_bits, 16);
   EXPECT_EQ(c.sim.encoder_bits_of.at("left_toe"), 14);
-  EXPECT_EQ(c.sim.noise_levels.imu_orientation_noise_rad, 0.5 * (M_PI / 180.0));
-  EXPECT_EQ(c.sim.noise_levels.imu_orientation_bias_rad, SensorNoiseParams{}.imu_orientation_bias_rad);
+  EXPECT_EQ(c.sim.noise_levels.imu_misalignment_rad, 0.5 * (M_PI / 180.0));
+  EXPECT_EQ(c.sim.noise_levels.accel_bias_m_s2, SensorNoiseParams{}.accel_bias_m_s2);
   EXPECT_EQ(c.sim.noise_levels.gyro_noise_rad_s, 0.01);
 }
 
@@ -214,8 +214,8 @@ TEST_F(CustomRobotFile, ErrorsNameFileKeyAndLine) {
   EXPECT_EQ(error_of("drives:\n  bandwidth_hz: fast\n"), file_ + ":3: key 'drives.bandwidth_hz': expected a number");
   EXPECT_EQ(error_of("sensor_noise:\n  gyro_bias_rad_s: -1\n"),
             file_ + ":3: key 'sensor_noise.gyro_bias_rad_s': must not be negative (got -1)");
-  EXPECT_EQ(error_of("sensor_noise:\n  imu_orientation_noise_deg: .nan\n"),
-            file_ + ":3: key 'sensor_noise.imu_orientation_noise_deg': must be a finite number (got '.nan')");
+  EXPECT_EQ(error_of("sensor_noise:\n  imu_misalignment_deg: .nan\n"),
+            file_ + ":3: key 'sensor_noise.imu_misalignment_deg': must be a finite number (got '.nan')");
   EXPECT_EQ(error_of("encoders:\n  bits_of: {left_toe: 0}\n"),
             file_ + ":3: key 'encoders.bits_of.left_toe': must be positive (got 0)");
   EXPECT_EQ(error_of("encoders:\n  bit: 16\n").find(file_ + ":3: key 'encoders.bit': unknown key"), 0u);

@@ -71,9 +71,11 @@ struct RecordedRun {
   RunRecorder figures_only;
   RunResult result;
 
+  // Ideal sensors: the touchdowns are compared with the plan's steps (with the realistic sensor
+  // errors the feet also bounce at touchdown and lift-off, README "Status").
   RecordedRun(const char* file, double duration)
       : scenario(load_scenario(test::source_path(std::string("config/scenarios/") + file),
-                               {"duration=" + std::to_string(duration)})),
+                               {"duration=" + std::to_string(duration), "sensors.ideal=true"})),
         config(make_run_config(scenario)),
         model(RobotModel::load(config.controller.model_path, config.controller.software_limit_margin_rad)),
         sim(config.sim, model),
@@ -198,6 +200,34 @@ TEST(RunRecorder, StepsCountGroundTruthTouchdowns) {
 
   const RecordedRun standing("lola-stand.yaml", 1.0);
   EXPECT_EQ(standing.summary(standing.recorder)["steps"].get<int>(), 0);
+}
+
+// JOHNNIE's open loop falls (at about 4.8 s); the run goes on for a second after it, its feet
+// bouncing and its IMU shaken by the impact. Steps end at the fall, and the impact's sensor fault is
+// reported as a consequence of the fall, not as the run's fault.
+TEST(RunRecorder, AFallEndsTheStepsAndItsImpactFaultIsNotTheCause) {
+  const RecordedRun fall("johnnie-walk-open-loop.yaml", 8.0);
+  ASSERT_TRUE(fall.result.fell);
+  const nlohmann::json s = fall.summary(fall.recorder);
+  // The same run ended at the moment of the fall (deterministic: the same touchdowns until then).
+  const RecordedRun until_fall("johnnie-walk-open-loop.yaml", fall.result.fall_time);
+  EXPECT_GE(s["steps"].get<int>(), 4);
+  EXPECT_EQ(s["steps"], until_fall.summary(until_fall.recorder)["steps"]);
+  ASSERT_TRUE(fall.controller->status().fault) << "the impact trips the sensor check";
+  EXPECT_TRUE(s["fault"].is_null()) << s["fault"];
+  EXPECT_EQ(s["fault_after_fall"], describe(fall.controller->status().first_fault));
+  EXPECT_GE(s["fault_time_s"].get<double>(), fall.result.fall_time);
+}
+
+// A fault that comes before any fall stays the run's fault.
+TEST(RunRecorder, AFaultBeforeAnyFallIsTheRunsFault) {
+  const RecordedRun nan("lola-ft-nan.yaml", 6.0);
+  ASSERT_FALSE(nan.result.fell);
+  const nlohmann::json s = nan.summary(nan.recorder);
+  EXPECT_EQ(s["fault"], "left F/T sensor");
+  EXPECT_TRUE(s["fault_after_fall"].is_null());
+  EXPECT_LT(s["fault_time_s"].get<double>(), 6.0);
+  EXPECT_TRUE(walk().summary(walk().recorder)["fault_time_s"].is_null());
 }
 
 }  // namespace

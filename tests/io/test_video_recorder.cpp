@@ -142,6 +142,44 @@ TEST(VideoRecorder, AWalkingRunHasOneFramePerPeriodAndShowsTheRobot) {
   fs::remove_all(dir);
 }
 
+// Each frame names the controller's state (and the simulated time) at its top left: the same
+// robot pose with another state differs there and nowhere else.
+TEST(VideoRecorder, TheOverlayShowsTheControllersStateAtTheTopLeft) {
+  const fs::path dir = fresh_dir("video-overlay");
+  const Scenario scenario = lola_walk(1.0);
+  const RunConfig config = make_run_config(scenario);
+  const RobotModel model = load_controller_model(config);
+  Simulation sim(config.sim, model);
+  VideoOptions video;
+  video.path = (dir / "overlay.mp4").string();
+  VideoRecorder recorder(sim, video);
+  SensorData sensors(model.num_joints());
+  const JointCommand command(model.num_joints());
+  ControllerStatus status;
+  std::vector<unsigned char> walking, safe_stop;
+  status.state = "walking";
+  recorder.record(sim, sensors, command, status, 0.0);
+  recorder.render(sim, walking);  // a first picture: it differs from later ones of the same state
+  recorder.render(sim, walking);
+  status.state = "safe_stop";
+  recorder.record(sim, sensors, command, status, 0.0);
+  recorder.render(sim, safe_stop);
+  ASSERT_EQ(walking.size(), safe_stop.size());
+  int inside = 0, outside = 0, x_max = 0, y_max = 0;
+  for (int y = 0; y < video.height; ++y) {
+    for (int x = 0; x < video.width; ++x) {
+      const std::size_t i = 3 * (static_cast<std::size_t>(y) * video.width + x);
+      if (std::equal(&walking[i], &walking[i] + 3, &safe_stop[i])) continue;
+      (x < video.width / 3 && y < video.height / 5 ? inside : outside) += 1;
+      x_max = std::max(x_max, x);
+      y_max = std::max(y_max, y);
+    }
+  }
+  EXPECT_GT(inside, 50) << "the state's text changed";
+  EXPECT_EQ(outside, 0) << "differences reach x = " << x_max << ", y = " << y_max;
+  fs::remove_all(dir);
+}
+
 TEST(VideoRecorder, AnUnfinishedVideoLeavesNoFile) {
   const fs::path dir = fresh_dir("video-unfinished");
   const Scenario scenario = lola_walk(1.0);

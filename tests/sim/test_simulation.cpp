@@ -68,7 +68,8 @@ TEST_P(Standing, TenSecondsWithoutFallDriftOrLostWeight) {
   EXPECT_FALSE(controller.status().fault);
 }
 
-INSTANTIATE_TEST_SUITE_P(Robots, Standing, ::testing::Values("lola", "johnnie"));
+INSTANTIATE_TEST_SUITE_P(Robots, Standing, ::testing::Values("lola", "johnnie"),
+                         [](const ::testing::TestParamInfo<std::string>& info) { return info.param; });
 
 // The control period is a whole number of physics steps; set-points are held in between.
 TEST(Simulation, ControlPeriodOfSeveralPhysicsSteps) {

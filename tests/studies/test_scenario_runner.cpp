@@ -67,7 +67,7 @@ INSTANTIATE_TEST_SUITE_P(
 
 TEST(CheckScenarioAgainstModel, AcceptsKnownSensorsAndBodies) {
   const RobotModel model = test::load_model("lola");
-  for (const char* sensor : {"ft_left", "ft_right", "imu", "left_knee"}) {
+  for (const char* sensor : {"ft_left", "ft_right", "imu", "imu_orientation", "imu_gyro", "imu_accel", "left_knee"}) {
     const Scenario s = load_scenario(kFaultScenario, {std::string("sensors.faults.0.sensor=") + sensor});
     EXPECT_NO_THROW(check_scenario_against_model(s, model)) << sensor;
   }
@@ -84,6 +84,16 @@ TEST(CheckScenarioAgainstModel, RejectsAnUnknownFaultSensorNamingFileAndKey) {
   EXPECT_NE(message.find(kFaultScenario), std::string::npos) << message;
   EXPECT_NE(message.find("sensors.faults.0.sensor"), std::string::npos) << message;
   EXPECT_NE(message.find("left_kneee"), std::string::npos) << message;
+  EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+}
+
+TEST(CheckScenarioAgainstModel, RejectsAnEncoderOffsetOfAnUnknownJointNamingFileAndKey) {
+  const RobotModel model = test::load_model("lola");
+  EXPECT_NO_THROW(check_scenario_against_model(load_scenario(kWalk, {"sensors.encoders.offset_deg.left_knee=0.2"}), model));
+  const Scenario s = load_scenario(kWalk, {"sensors.encoders.offset_deg.left_kneee=0.2"});
+  const std::string message = input_error_of([&] { check_scenario_against_model(s, model); });
+  EXPECT_NE(message.find(kWalk), std::string::npos) << message;
+  EXPECT_NE(message.find("sensors.encoders.offset_deg.left_kneee"), std::string::npos) << message;
   EXPECT_EQ(message.find('\n'), std::string::npos) << message;
 }
 

@@ -26,7 +26,9 @@ function summaryTable(data) {
     ['distance', `${fmt(s.distance_m)} m, ${s.steps} steps, mean ${fmt(s.mean_speed_mps)} m/s`],
     ['upper-body tilt', `RMS ${fmt(s.upper_body_tilt_deg.rms_x)}° / ${fmt(s.upper_body_tilt_deg.rms_y)}°, max ${fmt(s.upper_body_tilt_deg.max)}°`],
     ['controller cycle', `median ${fmt(s.controller_cycle_us.median, 1)} µs, p99 ${fmt(s.controller_cycle_us.p99, 1)} µs, max ${fmt(s.controller_cycle_us.max, 1)} µs`],
-    ['final state', s.fault ? `${s.final_state} (fault: ${s.fault})` : s.final_state],
+    ['final state', s.fault ? `${s.final_state} (fault: ${s.fault})`
+      : s.fault_after_fall ? `${s.final_state} (after the fall, its impact tripped the sensor check: ${s.fault_after_fall})`
+        : s.final_state],
   ];
   return element('table', { class: 'summary' },
     rows.map(([k, v]) => element('tr', {}, [element('th', { text: k }), element('td', { text: v })])));
@@ -67,11 +69,17 @@ function main() {
     ready: true,
     time: () => cursor.t,
     setTime,
-    plots: charts.map((c) => ({
-      title: c.title,
-      points: c.data[0].length,
-      series: c.data.slice(1).map((s) => s.filter((v) => v !== null && Number.isFinite(v)).length),
-    })),
+    // A getter: uPlot settles its scales after the first draw, not while the page is being built.
+    get plots() {
+      return charts.map((c) => ({
+        title: c.title,
+        points: c.data[0].length,
+        series: c.data.slice(1).map((s) => s.filter((v) => v !== null && Number.isFinite(v)).length),
+        labels: c.series.slice(1).map((s) => s.label),
+        dashed: c.series.slice(1).map((s) => Array.isArray(s.dash) && s.dash.length > 0),
+        yRange: [c.scales.y.min, c.scales.y.max],
+      }));
+    },
     bodyPosition: (name) => replay?.bodyPosition(name) ?? null,
     pelvis: () => replay?.bodyPosition(data.model.bodies[data.model.pelvis]) ?? null,
     canvas: () => replay?.canvas ?? null,

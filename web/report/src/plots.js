@@ -7,7 +7,9 @@ const BLUE = '#1f77b4', ORANGE = '#ff7f0e', GREEN = '#2ca02c', RED = '#d62728', 
 const BROWN = '#8c564b', GREY = '#7f7f7f';
 
 const line = (label, values, stroke, extra = {}) => ({ label, values, stroke, ...extra });
-const desired = (label, values, stroke) => line(label, values, stroke, { dash: [6, 4] });
+// Desired traces are dashed, a little wider, and listed after the measured ones so that uPlot draws
+// them on top: a measured trace that follows its target closely does not hide it.
+const desired = (label, values, stroke) => line(label, values, stroke, { dash: [7, 4], width: 2 });
 const bound = (label, values) => line(label, values, GREY, { dash: [2, 3], width: 1 });
 
 function definitions(data) {
@@ -29,21 +31,21 @@ function definitions(data) {
         bound('support polygon max', rel(L[`support_${axis}_max`])),
         line('CoM estimated', rel(L[`com_est_${axis}`]), PURPLE),
         line('CoM true', rel(L[`com_${axis}`]), BROWN),
-        desired('ZMP desired', rel(L[`zmp_des_${axis}`]), RED),
         line('CoP measured', rel(L[`cop_${axis}`]), BLUE),
+        desired('ZMP desired', rel(L[`zmp_des_${axis}`]), RED),
       ],
     });
   }
   for (const foot of data.feet) {
     defs.push({
       title: `${foot.side} foot: normal force F_z, desired against measured`, unit: 'N',
-      series: [desired('F_z desired', foot.fz_des, GREEN), line('F_z measured', foot.fz, BLUE)],
+      series: [line('F_z measured', foot.fz, BLUE), desired('F_z desired', foot.fz_des, GREEN)],
     });
     defs.push({
       title: `${foot.side} foot: torques T_x, T_y, desired against measured`, unit: 'N·m',
       series: [
-        desired('T_x desired', foot.tx_des, GREEN), line('T_x measured', foot.tx, BLUE),
-        desired('T_y desired', foot.ty_des, RED), line('T_y measured', foot.ty, ORANGE),
+        line('T_x measured', foot.tx, BLUE), line('T_y measured', foot.ty, ORANGE),
+        desired('T_x desired', foot.tx_des, GREEN), desired('T_y desired', foot.ty_des, RED),
       ],
     });
   }
@@ -59,19 +61,31 @@ function definitions(data) {
   return defs;
 }
 
+// One small plot per joint, scaled to the joint's own motion (a few degrees of a 180° range would
+// be a flat line on a scale from limit to limit); a limit is drawn where the motion comes near it,
+// and the title gives the closest approach to any limit.
 function jointDefinitions(data) {
   const n = data.log.t.length;
   const constant = (v) => new Array(n).fill(v);
-  return data.joints.map((j) => ({
-    title: j.name, unit: '°', small: true,
-    series: [
-      line('angle', j.q, BLUE),
-      line('lower limit', constant(j.lower), RED, { width: 1 }),
-      line('upper limit', constant(j.upper), RED, { width: 1 }),
-      line('software lower', constant(j.soft_lower), ORANGE, { dash: [4, 3], width: 1 }),
-      line('software upper', constant(j.soft_upper), ORANGE, { dash: [4, 3], width: 1 }),
-    ],
-  }));
+  return data.joints.map((j) => {
+    const q = j.q.filter((v) => v !== null && Number.isFinite(v));
+    const lo = q.length ? q.reduce((a, b) => Math.min(a, b)) : j.lower;
+    const hi = q.length ? q.reduce((a, b) => Math.max(a, b)) : j.upper;
+    const pad = Math.max(2, 0.15 * (hi - lo));
+    const margins = [['software lower', lo - j.soft_lower], ['software upper', j.soft_upper - hi]];
+    const [which, margin] = margins.reduce((a, b) => (b[1] < a[1] ? b : a));
+    return {
+      title: `${j.name}: closest ${margin.toFixed(1)}° to its ${which} limit`, unit: '°', small: true,
+      yRange: [Math.max(j.lower - 1, lo - pad), Math.min(j.upper + 1, hi + pad)],
+      series: [
+        line('angle', j.q, BLUE),
+        line('lower limit', constant(j.lower), RED, { width: 1 }),
+        line('upper limit', constant(j.upper), RED, { width: 1 }),
+        line('software lower', constant(j.soft_lower), ORANGE, { dash: [4, 3], width: 1 }),
+        line('software upper', constant(j.soft_upper), ORANGE, { dash: [4, 3], width: 1 }),
+      ],
+    };
+  });
 }
 
 function makePlot(container, def, t, cursor, setTime) {
@@ -90,7 +104,11 @@ function makePlot(container, def, t, cursor, setTime) {
     height: def.small ? 150 : 230,
     cursor: { sync: { key: 'time' } },
     legend: { show: !def.small },
-    scales: { x: { time: false }, ...(def.states ? { y: { range: [-0.5, def.states.length - 0.5] } } : {}) },
+    scales: {
+      x: { time: false },
+      ...(def.states ? { y: { range: [-0.5, def.states.length - 0.5] } } : {}),
+      ...(def.yRange ? { y: { range: def.yRange } } : {}),
+    },
     axes: [{ label: 't [s]', size: 36 }, yAxis],
     series: [{ label: 't' }, ...def.series.map((s) => ({
       label: s.label, stroke: s.stroke, width: s.width ?? 1.5, dash: s.dash, paths: s.paths, spanGaps: false,
@@ -124,7 +142,7 @@ export function createPlots(container, data, cursor, setTime) {
   container.appendChild(main);
   const plots = definitions(data).map((d) => makePlot(main, d, t, cursor, setTime));
   const heading = document.createElement('h2');
-  heading.textContent = 'Joint angles against their limits (red: hard, orange: software)';
+  heading.textContent = 'Joint angles, each on the scale of its own motion, against their limits (red: hard, orange dashed: software)';
   container.appendChild(heading);
   const joints = document.createElement('div');
   joints.className = 'plot-grid joints';

@@ -5,6 +5,33 @@ import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 
 const SIDE_COLOR = { left: 0x1f77b4, right: 0xd62728 };
+const PLAN_COLOR = 0x2ca02c, TRUE_COM_COLOR = 0x8c564b;
+
+const css = (color) => `#${color.toString(16).padStart(6, '0')}`;
+
+// What the overlay's colours mean, under the view.
+function legend() {
+  const box = document.createElement('div');
+  box.id = 'replay-legend';
+  const entries = [
+    ['footprint', SIDE_COLOR.left, 'left foot, planned'],
+    ['footprint', SIDE_COLOR.right, 'right foot, planned (bright: the steps in the plan now; faint: stepped on)'],
+    ['line', PLAN_COLOR, 'planned CoM trajectory'],
+    ['dashed', PLAN_COLOR, 'its ground projection'],
+    ['ball', PLAN_COLOR, 'planned CoM now'],
+    ['ball', TRUE_COM_COLOR, 'true CoM (simulator) and its drop line to the ground'],
+  ];
+  for (const [kind, color, text] of entries) {
+    const item = document.createElement('span');
+    item.className = 'legend-item';
+    const swatch = document.createElement('span');
+    swatch.className = `swatch ${kind}`;
+    swatch.style.setProperty('--color', css(color));
+    item.append(swatch, text);
+    box.appendChild(item);
+  }
+  return box;
+}
 
 // MuJoCo's geom sizes (half-sizes, radius and half-length along z) to three.js geometries.
 function geometryOf(geom) {
@@ -113,15 +140,15 @@ export function createReplay(viewer, controls, data, cursor, setTime) {
   const comPath = [];
   for (let i = 0; i < L.t.length; ++i) comPath.push(new THREE.Vector3(L.com_des_x[i], L.com_des_y[i], L.com_des_z[i]));
   const comLine = new THREE.Line(new THREE.BufferGeometry().setFromPoints(comPath),
-    new THREE.LineBasicMaterial({ color: 0x2ca02c }));
+    new THREE.LineBasicMaterial({ color: PLAN_COLOR }));
   scene.add(comLine);
   const groundPath = comPath.map((p) => new THREE.Vector3(p.x, p.y, 0.004));
   scene.add(new THREE.Line(new THREE.BufferGeometry().setFromPoints(groundPath),
-    new THREE.LineDashedMaterial({ color: 0x2ca02c, dashSize: 0.03, gapSize: 0.02 })).computeLineDistances());
-  const comMarker = new THREE.Mesh(new THREE.SphereGeometry(0.025, 16, 12), new THREE.MeshBasicMaterial({ color: 0x8c564b }));
-  const comDesiredMarker = new THREE.Mesh(new THREE.SphereGeometry(0.02, 16, 12), new THREE.MeshBasicMaterial({ color: 0x2ca02c }));
+    new THREE.LineDashedMaterial({ color: PLAN_COLOR, dashSize: 0.03, gapSize: 0.02 })).computeLineDistances());
+  const comMarker = new THREE.Mesh(new THREE.SphereGeometry(0.025, 16, 12), new THREE.MeshBasicMaterial({ color: TRUE_COM_COLOR }));
+  const comDesiredMarker = new THREE.Mesh(new THREE.SphereGeometry(0.02, 16, 12), new THREE.MeshBasicMaterial({ color: PLAN_COLOR }));
   const comDrop = new THREE.Line(new THREE.BufferGeometry().setFromPoints([new THREE.Vector3(), new THREE.Vector3()]),
-    new THREE.LineBasicMaterial({ color: 0x8c564b }));
+    new THREE.LineBasicMaterial({ color: TRUE_COM_COLOR }));
   scene.add(comMarker, comDesiredMarker, comDrop);
 
   // Pose at time t: the recorded frames, interpolated.
@@ -190,6 +217,13 @@ export function createReplay(viewer, controls, data, cursor, setTime) {
   }
   orbit.addEventListener('change', () => renderer.render(scene, camera));
 
+  // The walking state machine's state at time t, beside the time.
+  const stateAt = (t) => {
+    let i = L.t.findIndex((v) => v > t);
+    i = i < 0 ? L.t.length - 1 : Math.max(0, i - 1);
+    return L.states[L.state[i]] ?? '';
+  };
+
   // Controls: play/pause, time slider, speed, camera follow.
   const t0 = R.t[0] ?? 0, t1 = R.t[R.t.length - 1] ?? 0;
   const button = document.createElement('button');
@@ -206,6 +240,7 @@ export function createReplay(viewer, controls, data, cursor, setTime) {
   const followLabel = document.createElement('label');
   followLabel.append(followBox, ' camera follows');
   controls.append(button, slider, label, speed, followLabel);
+  controls.after(legend());
 
   let playing = false, last = 0;
   function frame(now) {
@@ -233,7 +268,7 @@ export function createReplay(viewer, controls, data, cursor, setTime) {
   followBox.addEventListener('change', () => { follow = followBox.checked; render(); });
   cursor.listeners.push((t) => {
     slider.value = t;
-    label.textContent = `t = ${t.toFixed(2)} s`;
+    label.textContent = `t = ${t.toFixed(2)} s, ${stateAt(t)}`;
     render();
   });
 

@@ -1,7 +1,9 @@
 // Browser test of report.html: runs a short LOLA walk through the `biped` binary, opens the report
 // from file:// in headless Chromium (Debian's chromium, driven by playwright-core from the lock
 // file) and checks: no console or page error, nothing fetched from elsewhere, the 3D canvas is not
-// blank, every plot has data, scrubbing the time slider moves the robot.
+// blank, every plot has data, scrubbing the time slider moves the robot, the title names the
+// scenario, a legend explains the 3D overlay, desired traces are dashed and on top, joint plots are
+// scaled to their motion.
 // Usage: node report.test.mjs BIPED_BINARY WORK_DIR
 import assert from 'node:assert/strict';
 import { execFileSync } from 'node:child_process';
@@ -96,6 +98,47 @@ test('every plot has data', async () => {
   }
   const drawn = await page.locator('.uplot canvas').count();
   assert.equal(drawn, plots.length);
+});
+
+test('the title names the scenario; a legend explains the 3D overlay', async () => {
+  assert.match(await page.title(), /^lola-walk \(lola\)/);
+  assert.match(await page.locator('h1').textContent(), /lola-walk/);
+  const items = await page.locator('#replay-legend .legend-item').allTextContents();
+  for (const words of ['left foot', 'right foot', 'planned CoM trajectory', 'true CoM']) {
+    assert.ok(items.some((t) => t.includes(words)), `legend: ${words} in ${JSON.stringify(items)}`);
+  }
+  const colours = await page.locator('#replay-legend .swatch').evaluateAll(
+    (swatches) => swatches.map((s) => getComputedStyle(s).getPropertyValue('--color').trim()));
+  assert.ok(new Set(colours).size >= 4, `distinct legend colours: ${colours}`);
+  assert.match(await page.locator('#time-label').textContent(), /t = [0-9.]+ s, \w+/);
+});
+
+test('desired traces are dashed and drawn over the measured ones', async () => {
+  const plots = await page.evaluate(() => window.__report.plots);
+  const withDesired = plots.filter((p) => p.labels.some((l) => l.includes('desired')));
+  assert.ok(withDesired.length >= 6, `${withDesired.length} plots with desired traces`);
+  for (const p of withDesired) {
+    const lastMeasured = p.labels.findLastIndex((l) => l.includes('measured'));
+    p.labels.forEach((l, i) => {
+      if (!l.includes('desired')) return;
+      assert.ok(i > lastMeasured, `${p.title}: '${l}' is drawn after every measured trace`);
+      assert.ok(p.dashed[i], `${p.title}: '${l}' is dashed`);
+    });
+  }
+});
+
+test('each joint plot is scaled to its own motion', async () => {
+  const joints = await page.evaluate(() => window.__report.plots.filter((p) => p.labels[0] === 'angle'));
+  const data = await page.evaluate(() => JSON.parse(document.getElementById('report-data').textContent).joints);
+  assert.equal(joints.length, data.length);
+  let narrower = 0;
+  joints.forEach((p, k) => {
+    const q = data[k].q.filter(Number.isFinite);
+    const [lo, hi] = p.yRange;
+    assert.ok(lo <= Math.min(...q) && Math.max(...q) <= hi, `${p.title}: the motion ${Math.min(...q)}..${Math.max(...q)} is inside the scale ${lo}..${hi}`);
+    if (hi - lo < 0.5 * (data[k].upper - data[k].lower)) narrower += 1;
+  });
+  assert.ok(narrower > joints.length / 2, `${narrower} of ${joints.length} joints on a scale narrower than half their range`);
 });
 
 test('scrubbing the time slider moves the robot', async () => {
