@@ -45,6 +45,10 @@ const ParameterTable<DriveParams> kDriveParameters = {
     {"velocity_loop_ratio", &DriveParams::velocity_loop_ratio, "", kPositive, "joint servos: ω_v/ω_p"},
     {"integral_ratio", &DriveParams::integral_ratio, "", kNonNegative,
      "joint servos: integral corner of the velocity loop ω_i/ω_v"},
+    {"no_load_speed", &DriveParams::no_load_speed, "rad/s", kPositive,
+     "drive speed–torque envelope: joint speed at which the motor voltage leaves no torque"},
+    {"voltage_stall_ratio", &DriveParams::voltage_stall_ratio, "", kPositive,
+     "drive speed–torque envelope: stall torque at full voltage / peak (current-limited) torque"},
 };
 
 const ParameterTable<SimulationParams> kEncoderParameters = {
