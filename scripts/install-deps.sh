@@ -16,6 +16,8 @@ demo_packages=(
   libcli11-dev                    # command line
   nlohmann-json3-dev              # summary.json, bench JSON
   libegl-dev libgl-dev            # headers and link libraries of `biped run --video` (EGL, GL), linked into build/biped
+  libsqlite3-dev                  # campaign results (campaign.sqlite)
+  libopenmpi-dev                  # distributed campaigns (MPI; build/biped runs without a launcher too)
 )
 test_packages=(
   libgtest-dev                    # tests
@@ -24,6 +26,7 @@ test_packages=(
   libegl-mesa0 libgl1-mesa-dri    # Mesa's EGL and its software renderer: `--video` without GPU or display
   ffmpeg                          # encodes the video; its ffprobe checks it in the tests
   python3-matplotlib python3-yaml # `make experiments` figures (experiments/plot.py) and their test
+  sqlite3 openmpi-bin             # the SQLite CLI for queries of campaign.sqlite; mpirun (the MPI test)
 )
 case "$set_name" in
   demo) packages=("${demo_packages[@]}") ;;

@@ -14,7 +14,10 @@
 #include "io/step_table_file.hpp"
 #include "io/video_recorder.hpp"
 #include "io/yaml_reader.hpp"
+#include "io/campaign_spec.hpp"
+#include "studies/campaign.hpp"
 #include "studies/controller_bench.hpp"
+#include "studies/push_map.hpp"
 #include "studies/push_test.hpp"
 #include "studies/scenario_runner.hpp"
 #include "studies/speed_sweep.hpp"
@@ -161,6 +164,64 @@ int speed_sweep_command(const std::string& scenario_path, const biped::SpeedSwee
   return 0;
 }
 
+// Campaigns and push maps run under MPI when an MPI launcher started the program. A failure on one
+// rank ends them all (the others would wait for it).
+template <class Study>
+int distributed_command(Study&& study) {
+  const biped::MpiSession mpi;
+  try {
+    study(mpi);
+    return 0;
+  } catch (const biped::InputError& e) {
+    std::cerr << "error: " << e.what() << '\n';
+    if (mpi.size() > 1) mpi.abort(kExitBadInput);
+    return kExitBadInput;
+  } catch (const std::exception& e) {
+    std::cerr << "internal error: " << e.what() << '\n';
+    if (mpi.size() > 1) mpi.abort(kExitInternal);
+    return kExitInternal;
+  }
+}
+
+int campaign_command(const std::string& spec_path, const std::string& out_dir, int jobs,
+                     const std::vector<std::string>& overrides) {
+  // The file is read and checked before MPI starts: a bad file stops every rank the same way.
+  const biped::CampaignSpec spec = biped::load_campaign_spec(spec_path, overrides);
+  return distributed_command([&](const biped::MpiSession& mpi) {
+    biped::CampaignEngineOptions options;
+    options.jobs = jobs;
+    options.progress = &std::cerr;
+    options.label = spec.name;
+    const nlohmann::json s = biped::run_campaign(spec, out_dir, mpi, options);
+    if (s.is_null()) return;
+    std::printf("%s: %ld runs, %ld completed, %ld errors, %ld falls", spec.name.c_str(), s["runs"].get<long>(),
+                s["completed"].get<long>(), s["errors"].get<long>(), s["falls"].get<long>());
+    if (!s["survival_rate"].is_null()) {
+      std::printf(", survival %.1f %% (95 %% interval %.1f-%.1f %%)", 100.0 * s["survival_rate"].get<double>(),
+                  100.0 * s["survival_rate_95ci"][0].get<double>(), 100.0 * s["survival_rate_95ci"][1].get<double>());
+    }
+    std::printf("; %.1f s on %d rank(s), %d worker(s)\n", s["wall_time_s"].get<double>(), s["ranks"].get<int>(),
+                s["workers"].get<int>());
+    std::printf("results: %s/campaign.sqlite, %s/results.csv, %s/summary.json, %s/report.html\n", out_dir.c_str(),
+                out_dir.c_str(), out_dir.c_str(), out_dir.c_str());
+  });
+}
+
+int push_map_command(const std::string& scenario_path, const std::string& out_dir, const biped::PushMapOptions& options,
+                     int jobs, const std::vector<std::string>& overrides) {
+  (void)biped::load_scenario(scenario_path, overrides);  // bad input stops every rank before MPI starts
+  return distributed_command([&](const biped::MpiSession& mpi) {
+    biped::CampaignEngineOptions engine;
+    engine.jobs = jobs;
+    engine.progress = &std::cerr;
+    engine.label = "push-map";
+    const nlohmann::json map = biped::run_push_map(scenario_path, overrides, out_dir, options, mpi, engine);
+    if (map.is_null()) return;
+    std::printf("push map: %s/push_map.json, %s/report.html (%zu cells)\n", out_dir.c_str(), out_dir.c_str(),
+                map["cells"].size());
+  });
+}
+
 int params_command(bool markdown) {
   const std::vector<biped::ParameterDoc> rows = biped::parameter_reference();
   std::cout << (markdown ? biped::markdown_table(rows) : biped::text_table(rows));
@@ -212,6 +273,9 @@ int main(int argc, char** argv) {
       ->capture_default_str()
       ->check(CLI::Range(0.0, 1.0));
   push->add_option("--set", push_overrides, "Override a scenario key")->type_name("KEY=VALUE");
+  double push_at_time = 0.0;
+  push->add_option("--at-time", push_at_time, "Push at this time [s] instead of a gait phase (a robot that stands)")
+      ->excludes("--phase");
 
   std::string sweep_scenario, sweep_json;
   std::vector<std::string> sweep_overrides;
@@ -224,6 +288,30 @@ int main(int argc, char** argv) {
   sweep->add_option("--hold", sweep_options.hold, "Seconds walked at each speed")->capture_default_str()->check(CLI::Range(1.0, 600.0));
   sweep->add_option("--json", sweep_json, "Write the results as JSON");
   sweep->add_option("--set", sweep_overrides, "Override a scenario key")->type_name("KEY=VALUE");
+
+  std::string campaign_spec, campaign_out;
+  std::vector<std::string> campaign_overrides;
+  int campaign_jobs = 0;
+  CLI::App* campaign = app.add_subcommand("campaign", "Many variants of a scenario on all cores or MPI ranks, into SQLite (resumable)");
+  campaign->add_option("spec", campaign_spec, "Campaign file (YAML, config/campaigns/)")->required();
+  campaign->add_option("--out", campaign_out, "Output folder (campaign.sqlite, results.csv, summary.json, report.html)")->required();
+  campaign->add_option("--jobs", campaign_jobs, "Worker threads (default: every core; 1 per rank under MPI)")->check(CLI::Range(1, 4096));
+  campaign->add_option("--set", campaign_overrides, "Override a campaign key, e.g. --set runs=8")->type_name("KEY=VALUE");
+
+  std::string map_scenario, map_out;
+  std::vector<std::string> map_overrides;
+  biped::PushMapOptions map_options;
+  int map_jobs = 0;
+  CLI::App* push_map = app.add_subcommand("push-map", "Largest survivable push per direction and gait phase (a campaign)");
+  push_map->add_option("scenario", map_scenario, "Scenario file (YAML)")->required();
+  push_map->add_option("--out", map_out, "Output folder (push_map.json, report.html, campaign.sqlite)")->required();
+  push_map->add_option("--directions", map_options.directions, "Push directions, evenly spaced")->capture_default_str();
+  push_map->add_option("--phases", map_options.phases, "Single-support phases")->capture_default_str();
+  push_map->add_option("--earliest", map_options.test.earliest, "Push in the first single support after this time [s] (standing: at it)")
+      ->capture_default_str();
+  push_map->add_option("--max-impulse", map_options.test.max_impulse, "Largest impulse tried [N·s]")->capture_default_str();
+  push_map->add_option("--jobs", map_jobs, "Worker threads (default: every core)")->check(CLI::Range(1, 4096));
+  push_map->add_option("--set", map_overrides, "Override a scenario key")->type_name("KEY=VALUE");
 
   bool params_markdown = false;
   CLI::App* params = app.add_subcommand("params", "List the robot files' parameters: key, default, unit, check, description");
@@ -255,10 +343,13 @@ int main(int argc, char** argv) {
     if (*push) {
       if (push->count("--direction-deg") > 0) push_options.direction_deg = push_direction_deg;
       else if (push->count("--direction") == 0) throw biped::InputError("push-test: give --direction or --direction-deg");
+      if (push->count("--at-time") > 0) push_options.at_time = push_at_time;
       return push_test_command(push_scenario, push_options, push_overrides);
     }
     if (*sweep) return speed_sweep_command(sweep_scenario, sweep_options, sweep_overrides, sweep_json);
     if (*params) return params_command(params_markdown);
+    if (*campaign) return campaign_command(campaign_spec, campaign_out, campaign_jobs, campaign_overrides);
+    if (*push_map) return push_map_command(map_scenario, map_out, map_options, map_jobs, map_overrides);
   } catch (const biped::InputError& e) {
     std::cerr << "error: " << e.what() << '\n';
     return kExitBadInput;

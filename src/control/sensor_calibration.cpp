@@ -122,7 +122,8 @@ void SensorCalibration::estimate_at_startup(const SensorData& s, const Calibrati
     // The filter's tilt error from the bias while standing is part of the mean tilt, not of the mounting.
     Eigen::Vector3d mounting = sum_tilt_ / n - (sum_bias_gain_ / n) * perpendicular(gyro_bias_, up);
     mounting.z() = 0.0;
-    misalignment_ = mounting.norm() <= params_.max_misalignment ? mounting : Eigen::Vector3d::Zero();
+    const double size = mounting.norm();
+    misalignment_ = size >= params_.min_misalignment && size <= params_.max_misalignment ? mounting : Eigen::Vector3d::Zero();
     bias_tilt_ = params_.ahrs_time_constant > 0.0
                      ? Eigen::Vector3d(params_.ahrs_time_constant * (1.0 - std::exp(-t / params_.ahrs_time_constant)) *
                                        perpendicular(gyro_bias_, up))

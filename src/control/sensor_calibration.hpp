@@ -40,6 +40,9 @@ struct SensorCalibrationParams {
   double drift_time = 0.0;
   double max_drift = 1.0 * M_PI / 180.0;            // [rad] bound of the drift correction
   double max_misalignment = 5.0 * M_PI / 180.0;     // [rad] larger start-up estimates are not used
+  // [rad] smaller start-up estimates are not used: the flat-foot reference is good to about 0.2° (the
+  // standing feet pitch on their compliant soles; exact sensors read 0.16°).
+  double min_misalignment = 0.3 * M_PI / 180.0;
   double max_gyro_bias = 0.05;                      // [rad/s] larger start-up estimates are not used
   bool ft_swing_rezero = true;                      // re-zero each F/T sensor in its foot's swing
   double swing_clearance = 0.02;                    // [m] planned height above the stance foot to count

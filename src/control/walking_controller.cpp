@@ -26,6 +26,7 @@ WalkingController::WalkingController(const RobotModel& model, const WalkingContr
       reference_(space_),
       stabilizer_(model, params.stabilization),
       terrain_(model, params.terrain),
+      step_adaptation_(params.step_adaptation),
       com_estimator_(model),
       monitor_(model, params.sensor_limits),
       calibration_(model, params.calibration),
@@ -37,6 +38,7 @@ void WalkingController::reset(const SensorData& first) {
   status_ = ControllerStatus{};
   stabilizer_.reset();
   terrain_.reset();
+  step_adaptation_.reset();
   monitor_.reset(first);
   calibration_.reset(first.time);
   last_time_ = first.time;
@@ -87,6 +89,7 @@ void WalkingController::step(const SensorData& raw_sensors, const WalkCommand& c
     publish_status();
     return;
   }
+  adapt_steps();
   const PatternSample& sample = plan_.advance(sensors.time - start_time_, command);
   adapt_to_terrain(sensors);
   reference_.update(sample, terrain_, rmrc_.task());
@@ -132,6 +135,46 @@ bool WalkingController::detect_fall(const SensorData& sensors) {
   if (math::tilt_from_vertical(sensors.imu_orientation.toRotationMatrix()) <= params_.fall_tilt) return false;
   plan_.enter_fallen();
   return true;
+}
+
+void WalkingController::adapt_steps() {
+  const PatternSample& s = plan_.sample();
+  const bool estimate = params_.stabilizer && status_.com_estimate_valid && params_.step_adaptation.enabled;
+  {
+    const FootReference& stance = s.feet[index_of(s.stance)];
+    const Eigen::Matrix2d to_world = yaw_rotation(s.heading).topLeftCorner<2, 2>();
+    plan_.set_measured_com(stance.position.head<2>() + to_world * com_estimator_.estimate(),
+                           stance.velocity.head<2>() + to_world * com_estimator_.rate(),
+                           params_.step_adaptation.replan_threshold, estimate);
+  }
+  const int swing = !s.feet[0].in_contact ? 0 : !s.feet[1].in_contact ? 1 : -1;
+  if (swing < 0 || !estimate || plan_.num_planned_steps() == 0) {
+    step_adaptation_.idle();
+    plan_.shift_landing(Eigen::Vector2d::Zero(), Eigen::Vector2d::Zero());
+    return;
+  }
+  const FootReference& stance = s.feet[1 - swing];
+  const Eigen::Matrix2d to_heading = yaw_rotation(-s.heading).topLeftCorner<2, 2>();
+  StepAdaptationInput in;
+  in.swing = swing == 0 ? Side::Left : Side::Right;
+  in.time_to_touchdown = s.feet[swing].time_to_touchdown;
+  in.planned_com = to_heading * (s.com - stance.position).head<2>();
+  in.planned_com_rate = to_heading * (s.com_velocity - stance.velocity).head<2>();
+  in.measured_com = com_estimator_.estimate();
+  in.measured_com_rate = com_estimator_.rate();
+  in.planned_landing = to_heading * (plan_.planned_step(0).position - stance.position.head<2>());
+  in.com_height = s.com.z() - stance.position.z() + plan_.pattern_generator().params().ankle_height;
+  // The stance sole around the planned centre of pressure (the pattern's ZMP point of the foot).
+  const FootInfo& foot = model_.foot(in.swing == Side::Left ? Side::Right : Side::Left);
+  const double zmp_x = plan_.pattern_generator().params().zmp_offset_x;
+  const double margin = params_.stabilization.cop_margin;
+  in.cop_forward = std::max(0.0, foot.sensor_position.x() + foot.sole_x_max - margin - zmp_x);
+  in.cop_backward = std::max(0.0, zmp_x - foot.sensor_position.x() - foot.sole_x_min - margin);
+  in.cop_sideways = std::max(0.0, std::min(foot.sole_y_max, -foot.sole_y_min) - margin);
+  in.gravity = model_.gravity();
+  step_adaptation_.update(params_.rmrc.dt, in);
+  const Eigen::Matrix2d to_world = to_heading.transpose();
+  plan_.shift_landing(to_world * step_adaptation_.shift(), to_world * step_adaptation_.shift_rate());
 }
 
 void WalkingController::adapt_to_terrain(const SensorData& sensors) {
@@ -199,6 +242,8 @@ void WalkingController::publish_status() {
   status_.state = name_of(plan_.state());
   status_.com_estimate_valid = stabilizing;
   status_.num_planned_steps = plan_.num_planned_steps();
+  status_.dcm_error = step_adaptation_.dcm_error();
+  status_.landing_shift = step_adaptation_.shift();
   for (int k = 0; k < 2; ++k) {
     status_.foot_height_offset[k] = terrain_.foot_offset(k);
     status_.foot_tilt[k] = terrain_.foot_tilt(k);

@@ -11,6 +11,7 @@
 #include "control/sensor_calibration.hpp"
 #include "control/sensor_monitor.hpp"
 #include "control/stabilizer.hpp"
+#include "control/step_adaptation.hpp"
 #include "control/task_reference.hpp"
 #include "control/terrain_adaptation.hpp"
 #include "control/walking_plan.hpp"
@@ -25,6 +26,7 @@ struct WalkingControllerParams {
   bool stabilizer = true;           // false: the open-loop baseline (pattern → eq. (21) only)
   StabilizerParams stabilization;
   TerrainAdaptationParams terrain;  // used with the stabilizer (it needs the F/T sensors)
+  StepAdaptationParams step_adaptation;  // used with the stabilizer (it needs the state estimate)
   SensorLimits sensor_limits;
   SensorCalibrationParams calibration;  // IMU and F/T errors estimated and removed (an extension)
   // [rad] the upper body tilted this far from vertical (IMU) is beyond recovery: the fallen state.
@@ -54,6 +56,7 @@ class WalkingController final : public Controller {
   const Stabilizer& stabilizer() const { return stabilizer_; }
   const TerrainAdaptation& terrain() const { return terrain_; }
   const SensorCalibration& calibration() const { return calibration_; }
+  const StepAdaptation& step_adaptation() const { return step_adaptation_; }
   const CycleTiming& timing() const { return timing_; }
   // The inputs eq. (21) got in the last cycle (to replay them, e.g. in the SVD baseline).
   const Eigen::VectorXd& task_reference() const { return reference_.x(); }
@@ -71,6 +74,8 @@ class WalkingController final : public Controller {
   const SensorData& detect_faults(const SensorData& raw);
   // The upper body tilted beyond recovery: the fallen state.
   bool detect_fall(const SensorData& sensors);
+  // Where the foot in the air lands, from the last cycle's state estimate (control/step_adaptation).
+  void adapt_steps();
   // The footholds' and the CoM's heights from the F/T sensors (both needed).
   void adapt_to_terrain(const SensorData& sensors);
   // eqs. (10)–(20) with the state estimate: the feet's modification Δx_λ of eq. (21)'s reference.
@@ -91,6 +96,7 @@ class WalkingController final : public Controller {
   TaskReference reference_;
   Stabilizer stabilizer_;
   TerrainAdaptation terrain_;
+  StepAdaptation step_adaptation_;
   CoMEstimator com_estimator_;
   SensorMonitor monitor_;
   SensorCalibration calibration_;

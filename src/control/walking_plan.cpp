@@ -1,5 +1,6 @@
 #include "control/walking_plan.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace biped {
@@ -21,8 +22,14 @@ void WalkingPlan::reset(const std::array<Footstep, 2>& feet, const Eigen::Vector
   feet_ = feet;
   num_planned_ = 0;
   planned_vx_ = 0.0;
+  planned_vy_ = 0.0;
+  planned_omega_ = 0.0;
   command_saturated_ = false;
   steps_completed_ = 0;
+  landing_shift_.setZero();
+  landing_shift_rate_.setZero();
+  measured_valid_ = false;
+  replans_from_measured_ = 0;
   step_ = params_.step;
   step_.com_height = com.z();
   step_.step_width = (feet_[0].position - feet_[1].position).norm();
@@ -48,23 +55,67 @@ const PatternSample& WalkingPlan::advance(double t, const WalkCommand& command) 
   const bool wants_to_walk = commanded || std::abs(planned_vx_) > max_speed_change() + 1e-9;
   const bool at_touchdown = num_planned_ > 0 && t >= pattern_.next_touchdown() - 1e-9;
   if (at_touchdown) {
-    feet_[index_of(planned_[0].side)] = planned_[0];
+    Footstep landed = planned_[0];
+    landed.position += landing_shift_;
+    feet_[index_of(landed.side)] = landed;
     ++steps_completed_;
+    landing_shift_.setZero();
+    landing_shift_rate_.setZero();
   }
   replan(t, fsm_.update(wants_to_walk, at_touchdown), commanded ? v : VelocityCommand{});
   pattern_.sample(t, sample_);
+  for (FootReference& foot : sample_.feet) {
+    if (foot.in_contact) continue;
+    foot.position.head<2>() += foot.swing_progress * landing_shift_;
+    foot.velocity.head<2>() += foot.swing_progress_rate * landing_shift_ + foot.swing_progress * landing_shift_rate_;
+  }
   return sample_;
+}
+
+void WalkingPlan::set_measured_com(const Eigen::Vector2d& position, const Eigen::Vector2d& velocity, double threshold,
+                                   bool valid) {
+  measured_com_ = position;
+  measured_com_velocity_ = velocity;
+  replan_threshold_ = threshold;
+  measured_valid_ = valid;
+}
+
+void WalkingPlan::shift_landing(const Eigen::Vector2d& shift, const Eigen::Vector2d& shift_rate) {
+  landing_shift_ = shift;
+  landing_shift_rate_ = shift_rate;
 }
 
 void WalkingPlan::replan(double t, StepDecision decision, const VelocityCommand& command) {
   if (decision == StepDecision::None) return;
-  VelocityCommand v = command;
-  planned_vx_ = decision == StepDecision::StartWalk || decision == StepDecision::Continue
-                    ? ramp_towards(planned_vx_, command.vx, max_speed_change())
-                    : 0.0;
-  v.vx = planned_vx_;
+  const bool walking = decision == StepDecision::StartWalk || decision == StepDecision::Continue;
+  const double step_time = params_.table.lookup(planned_vx_, step_).step_time;
+  planned_vx_ = walking ? ramp_towards(planned_vx_, command.vx, max_speed_change()) : 0.0;
+  planned_vy_ = walking ? ramp_towards(planned_vy_, command.vy, params_.limits.vy_rate * step_time) : 0.0;
+  planned_omega_ = walking ? ramp_towards(planned_omega_, command.omega, params_.limits.omega_rate * step_time) : 0.0;
+  const VelocityCommand v{planned_vx_, planned_vy_, planned_omega_};
   PatternSample now;
   pattern_.sample(t, now);
+  if (measured_valid_) {
+    // The body mass point that puts the simplified model's CoM at the measured one, the legs where
+    // the plan has them (at a touchdown they stand still).
+    const PatternGeneratorParams& p = pattern_.params();
+    const double omega = std::sqrt(p.gravity / std::max(0.3, now.com.z()));
+    const Eigen::Vector2d deviation = (measured_com_ - now.com.head<2>()) +
+                                      (measured_com_velocity_ - now.com_velocity.head<2>()) / omega;
+    if (deviation.norm() > replan_threshold_) {
+      const double m_total = p.body_mass + 2.0 * p.leg_mass;
+      Eigen::Vector2d legs = Eigen::Vector2d::Zero(), legs_velocity = Eigen::Vector2d::Zero();
+      for (const FootReference& foot : now.feet) {
+        legs += foot.position.head<2>();
+        legs_velocity += foot.velocity.head<2>();
+      }
+      const Eigen::Vector2d body = (m_total * measured_com_ - p.leg_mass * legs) / p.body_mass;
+      const Eigen::Vector2d body_velocity = (m_total * measured_com_velocity_ - p.leg_mass * legs_velocity) / p.body_mass;
+      now.body_x = {body.x(), body_velocity.x(), 0.0};
+      now.body_y = {body.y(), body_velocity.y(), 0.0};
+      ++replans_from_measured_;
+    }
+  }
   const StepParameters step = params_.table.lookup(decision == StepDecision::StopStep ? 0.0 : v.vx, step_);
   switch (decision) {
     case StepDecision::StartWalk: {

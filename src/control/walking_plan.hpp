@@ -35,6 +35,14 @@ class WalkingPlan {
   // One cycle at time t since the reset: the command is saturated to the limits, a touchdown makes
   // the landed step the new foothold and lets the FSM decide, and the pattern is sampled at t.
   const PatternSample& advance(double t, const WalkCommand& command);
+  // The step in the air lands `shift` (controller frame) away from its planned foothold (step
+  // adaptation): the swing foot's reference gains s·shift (s: the swing's progress) and the rate
+  // ṡ·shift + s·shift_rate, and at touchdown the foothold is the shifted one. Cleared at touchdown.
+  void shift_landing(const Eigen::Vector2d& shift, const Eigen::Vector2d& shift_rate);
+  // The robot's CoM as the state estimate has it (controller frame) and its velocity: the next
+  // replanning at a touchdown starts from it instead of the plan's own state when they differ by
+  // more than `threshold` [m] (position plus velocity / ω₀). `valid` false: from the plan's state.
+  void set_measured_com(const Eigen::Vector2d& position, const Eigen::Vector2d& velocity, double threshold, bool valid);
   // A sensor fault: finish the step under way, put the feet side by side, stand.
   void enter_safe_stop() { fsm_.enter_safe_stop(); }
   // The robot has fallen: advance() is not called any more.
@@ -44,6 +52,7 @@ class WalkingPlan {
   const PatternSample& sample() const { return sample_; }
   bool command_saturated() const { return command_saturated_; }  // in the last advance()
   int steps_completed() const { return steps_completed_; }
+  int replans_from_measured() const { return replans_from_measured_; }
   int num_planned_steps() const { return num_planned_; }
   const Footstep& planned_step(int i) const { return planned_[i]; }
   const WalkingPatternGenerator& pattern_generator() const { return pattern_; }
@@ -51,7 +60,7 @@ class WalkingPlan {
   double max_speed_change() const;
 
  private:
-  // Plans with the command's vx ramped from planned_vx_ (StartWalk, Continue).
+  // Plans with the command's vx, vy and ω ramped from the current plan's (StartWalk, Continue).
   void replan(double t, StepDecision decision, const VelocityCommand& command);
 
   WalkingPlanParams params_;
@@ -62,7 +71,14 @@ class WalkingPlan {
   std::array<Footstep, kMaxSteps> planned_;   // steps of the current plan
   int num_planned_ = 0;
   double planned_vx_ = 0.0;                   // forward speed of the current plan (ramped, limits.vx_rate)
+  double planned_vy_ = 0.0;                   // its sideways speed (ramped, limits.vy_rate)
+  double planned_omega_ = 0.0;                // its turn rate (ramped, limits.omega_rate)
   PatternSample sample_;
+  Eigen::Vector2d landing_shift_ = Eigen::Vector2d::Zero(), landing_shift_rate_ = Eigen::Vector2d::Zero();
+  Eigen::Vector2d measured_com_ = Eigen::Vector2d::Zero(), measured_com_velocity_ = Eigen::Vector2d::Zero();
+  double replan_threshold_ = 0.0;
+  bool measured_valid_ = false;
+  int replans_from_measured_ = 0;
   bool command_saturated_ = false;
   int steps_completed_ = 0;
 };

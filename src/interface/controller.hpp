@@ -50,6 +50,10 @@ struct ControllerStatus {
   Eigen::Vector3d imu_misalignment = Eigen::Vector3d::Zero();
   Eigen::Vector3d gyro_bias = Eigen::Vector3d::Zero();
   std::array<Wrench, 2> ft_offset;
+  // Step adaptation: the DCM error (measured − planned) and the shift of the landing point of the
+  // step in the air [m], heading frame (x forward, y left).
+  Eigen::Vector2d dcm_error = Eigen::Vector2d::Zero();
+  Eigen::Vector2d landing_shift = Eigen::Vector2d::Zero();
 };
 
 class Controller {

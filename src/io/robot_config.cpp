@@ -45,6 +45,10 @@ const ParameterTable<DriveParams> kDriveParameters = {
     {"velocity_loop_ratio", &DriveParams::velocity_loop_ratio, "", kPositive, "joint servos: ω_v/ω_p"},
     {"integral_ratio", &DriveParams::integral_ratio, "", kNonNegative,
      "joint servos: integral corner of the velocity loop ω_i/ω_v"},
+    {"no_load_speed", &DriveParams::no_load_speed, "rad/s", kPositive,
+     "drive speed–torque envelope: joint speed at which the motor voltage leaves no torque"},
+    {"voltage_stall_ratio", &DriveParams::voltage_stall_ratio, "", kPositive,
+     "drive speed–torque envelope: stall torque at full voltage / peak (current-limited) torque"},
 };
 
 const ParameterTable<SimulationParams> kEncoderParameters = {
@@ -130,6 +134,9 @@ const ParameterTable<CommandLimits> kCommandLimitParameters = {
      "the gait's forward speed changes by at most this × step time per step"},
     {"vy_max", &CommandLimits::vy_max, "m/s", kNonNegative, "sideways speed, either side"},
     {"omega_max", &CommandLimits::omega_max, "rad/s", kNonNegative, "turn rate, either side"},
+    {"vy_rate", &CommandLimits::vy_rate, "m/s²", kPositive, "the gait's sideways speed changes by at most this × step time per step"},
+    {"omega_rate", &CommandLimits::omega_rate, "rad/s²", kPositive,
+     "the gait's turn rate changes by at most this × step time per step"},
 };
 
 const ParameterTable<StabilizerParams> kStabilizerParameters = {
@@ -187,6 +194,8 @@ const ParameterTable<SensorCalibrationParams> kSensorCalibrationParameters = {
      "bound of the drift tracking's correction"},
     {"max_misalignment_deg", Degrees<SensorCalibrationParams>{&SensorCalibrationParams::max_misalignment}, "deg",
      kNonNegative, "a larger start-up estimate of the IMU's misalignment is not used"},
+    {"min_misalignment_deg", Degrees<SensorCalibrationParams>{&SensorCalibrationParams::min_misalignment}, "deg",
+     kNonNegative, "a smaller start-up estimate of the IMU's misalignment is not used (the flat-foot reference's accuracy)"},
     {"max_gyro_bias", &SensorCalibrationParams::max_gyro_bias, "rad/s", kNonNegative,
      "a larger start-up estimate of the gyro bias is not used"},
     {"ft_swing_rezero", &SensorCalibrationParams::ft_swing_rezero, "", {}, "re-zero each F/T sensor in its foot's swing"},
@@ -241,6 +250,26 @@ const ParameterTable<TerrainAdaptationParams> kTerrainAdaptationParameters = {
     {"max_tilt", &TerrainAdaptationParams::max_tilt, "rad", kPositive, "partial support: bound of a foot's tilt"},
 };
 
+const ParameterTable<StepAdaptationParams> kStepAdaptationParameters = {
+    {"enabled", &StepAdaptationParams::enabled, "", {}, "step adaptation from the measured DCM (with the stabilizer)"},
+    {"gain", &StepAdaptationParams::gain, "", kNonNegative, "share of the DCM error predicted at touchdown taken up by the step"},
+    {"cop_reach_share", &StepAdaptationParams::cop_reach_share, "", kNonNegative,
+     "share of the stance sole's CoP reach counted on to absorb a DCM error before a step is shifted"},
+    {"dead_band_forward", &StepAdaptationParams::dead_band_forward, "m", kNonNegative,
+     "DCM error along the heading left to the stabilizer (the estimate's scatter in undisturbed walking)"},
+    {"dead_band_sideways", &StepAdaptationParams::dead_band_sideways, "m", kNonNegative, "... sideways"},
+    {"max_forward", &StepAdaptationParams::max_forward, "m", kNonNegative, "largest shift of a landing point forward"},
+    {"max_backward", &StepAdaptationParams::max_backward, "m", kNonNegative, "... backward"},
+    {"max_outward", &StepAdaptationParams::max_outward, "m", kNonNegative, "... sideways away from the stance foot"},
+    {"max_inward", &StepAdaptationParams::max_inward, "m", kNonNegative, "... sideways towards the stance foot"},
+    {"min_width", &StepAdaptationParams::min_width, "m", kPositive, "the feet's centres stay this far apart sideways"},
+    {"filter_time", &StepAdaptationParams::filter_time, "s", kNonNegative, "filter of the landing point's shift"},
+    {"max_rate", &StepAdaptationParams::max_rate, "m/s", kPositive, "the landing point moves at most this fast"},
+    {"freeze_time", &StepAdaptationParams::freeze_time, "s", kNonNegative, "the landing point is held this long before touchdown"},
+    {"replan_threshold", &StepAdaptationParams::replan_threshold, "m", kNonNegative,
+     "at a touchdown the pattern restarts from the measured CoM when the DCMs differ by more"},
+};
+
 ParameterSection simulation_section(SimulationParams& p) {
   return {"simulation",
           {{kWorldParameters, p.world}, {kSimulationParameters, p}, {kSoleContactParameters, p.sole_contact}},
@@ -261,7 +290,8 @@ ParameterSection controller_section(ControllerConfig& p) {
            {kRmrcParameters, w.rmrc},
            {kStandingParameters, p.standing},
            {kWeightShiftParameters, p.weight_shift}},
-          {"type", "model", "stance", "step_table", "limits", "stabilization", "sensor_limits", "terrain_adaptation", "calibration"}};
+          {"type", "model", "stance", "step_table", "limits", "stabilization", "sensor_limits", "terrain_adaptation",
+           "step_adaptation", "calibration"}};
 }
 ParameterSection command_limits_section(CommandLimits& p) {
   return {"controller.limits", {{kCommandLimitParameters, p}}, {}};
@@ -277,6 +307,9 @@ ParameterSection calibration_section(SensorCalibrationParams& p) {
 }
 ParameterSection terrain_adaptation_section(TerrainAdaptationParams& p) {
   return {"controller.terrain_adaptation", {{kTerrainAdaptationParameters, p}}, {}};
+}
+ParameterSection step_adaptation_section(StepAdaptationParams& p) {
+  return {"controller.step_adaptation", {{kStepAdaptationParameters, p}}, {}};
 }
 
 void read_simulation(const YamlReader& r, const YAML::Node& sim, SimulationParams& p) {
@@ -334,6 +367,7 @@ void read_controller(const YamlReader& r, const YAML::Node& c, ControllerConfig&
   read_stabilization(r, r.mapping(c, "controller", "stabilization"), w.stabilization);
   read_section(r, r.mapping(c, "controller", "sensor_limits"), sensor_limits_section(w.sensor_limits));
   read_section(r, r.mapping(c, "controller", "terrain_adaptation"), terrain_adaptation_section(w.terrain));
+  read_section(r, r.mapping(c, "controller", "step_adaptation"), step_adaptation_section(w.step_adaptation));
   read_section(r, r.mapping(c, "controller", "calibration"), calibration_section(w.calibration));
 }
 
@@ -387,7 +421,7 @@ std::vector<ParameterDoc> parameter_reference() {
                             sensor_noise_section(sim.noise_levels), controller_section(controller),
                             command_limits_section(w.plan.limits), stabilization_section(w.stabilization),
                             sensor_limits_section(w.sensor_limits), terrain_adaptation_section(w.terrain),
-                            calibration_section(w.calibration)});
+                            step_adaptation_section(w.step_adaptation), calibration_section(w.calibration)});
 }
 
 RunConfig make_run_config(const Scenario& s) {

@@ -47,7 +47,7 @@ class RunRecorder final : public RunObserver {
   bool fault_seen_ = false, fault_after_fall_ = false;
   double fault_time_ = 0.0;
   bool command_saturated_ = false;
-  char line_[512];
+  std::string row_;  // the log.csv row being written
 };
 
 }  // namespace biped

@@ -104,28 +104,60 @@ void read_disturbances(const YamlReader& r, const YAML::Node& root, Scenario& s)
 
 void read_terrain(const YamlReader& r, const YAML::Node& root, Scenario& s) {
   const YAML::Node list = r.sequence(root, "", "terrain");
+  std::vector<YAML::Node> nodes;
   for (std::size_t i = 0; i < list.size(); ++i) {
     const std::string where = item("terrain", i);
     const YAML::Node t = list[i];
+    nodes.push_back(t);
     const std::string type = r.text(t, where, "type");
     TerrainFeature f;
+    // Where the feature is: x (and y, 0 when absent); which way it rises or runs: heading_deg.
+    auto place = [&] {
+      f.at = Eigen::Vector2d(r.number(t, where, "x"), r.number_or(t, where, "y", 0.0));
+      f.heading_deg = r.number_or(t, where, "heading_deg", 0.0);
+    };
+    auto rectangle = [&] {
+      for (const char* key : {"length", "width"}) {
+        if (!t[key]) r.fail(t, where + "." + key, "missing (required)");
+      }
+      f.length = r.positive_or(t, where, "length", 0.0);
+      f.width = r.positive_or(t, where, "width", 0.0);
+    };
     if (type == "step") {
-      r.expect_keys(t, where, {"type", "x", "height"});
+      r.expect_keys(t, where, {"type", "x", "y", "heading_deg", "height"});
       f.kind = TerrainFeature::Kind::Step;
-      f.x = r.number(t, where, "x");
+      place();
       f.height = r.number(t, where, "height");
       if (std::abs(f.height) > 0.3) r.fail(t["height"], where + ".height", "steps higher than 0.3 m are not supported");
     } else if (type == "slope") {
-      r.expect_keys(t, where, {"type", "x", "angle_deg", "length"});
+      r.expect_keys(t, where, {"type", "x", "y", "heading_deg", "angle_deg", "length"});
       f.kind = TerrainFeature::Kind::Slope;
-      f.x = r.number(t, where, "x");
+      place();
       f.angle_deg = r.number(t, where, "angle_deg");
       if (std::abs(f.angle_deg) > 30.0) r.fail(t["angle_deg"], where + ".angle_deg", "must be within ±30");
       f.length = r.positive_or(t, where, "length", 2.0);
+    } else if (type == "box") {
+      r.expect_keys(t, where, {"type", "x", "y", "heading_deg", "length", "width", "height"});
+      f.kind = TerrainFeature::Kind::Box;
+      place();
+      rectangle();
+      f.height = r.number(t, where, "height");
+      if (std::abs(f.height) > 0.3) r.fail(t["height"], where + ".height", "boxes higher than 0.3 m are not supported");
+    } else if (type == "friction") {
+      r.expect_keys(t, where, {"type", "x", "y", "heading_deg", "length", "width", "mu"});
+      f.kind = TerrainFeature::Kind::Friction;
+      place();
+      rectangle();
+      if (!t["mu"]) r.fail(t, where + ".mu", "missing (required)");
+      f.friction = r.positive_or(t, where, "mu", 0.0);
     } else {
-      r.fail(t["type"], where + ".type", "unknown terrain '" + type + "' (known: step, slope)");
+      r.fail(t["type"], where + ".type", "unknown terrain '" + type + "' (known: step, slope, box, friction)");
     }
     s.terrain.push_back(f);
+  }
+  for (const Terrain::Overlap& o : Terrain::overlaps(s.terrain)) {
+    r.fail(nodes[o.second], item("terrain", o.second),
+           "friction patch overlaps the one of " + item("terrain", o.first) + " (friction patches may not overlap)");
   }
 }
 

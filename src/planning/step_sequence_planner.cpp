@@ -49,8 +49,14 @@ void plan_steps(const Footstep& stance, const VelocityCommand& v, const StepPara
                 int count, std::array<Footstep, 3>& steps) {
   PlanarPose h = heading_of_stance(stance, p.step_width);
   Side side = stance.side == Side::Left ? Side::Right : Side::Left;
+  // Sideways, the foot on the side of the motion leads: its step moves the heading frame by 2·vy·T
+  // and the other foot's by none, so the trailing foot closes to the step width instead of coming
+  // vy·T closer than it, and vy is kept on average.
+  const Side leading = v.vy >= 0.0 ? Side::Left : Side::Right;
   for (int k = 0; k < std::min(count, 3); ++k) {
-    h = advance(h, v, p.step_time);
+    VelocityCommand step_velocity = v;
+    step_velocity.vy = side == leading ? 2.0 * v.vy : 0.0;
+    h = advance(h, step_velocity, p.step_time);
     const double lateral = (side == Side::Left ? 0.5 : -0.5) * p.step_width;
     Footstep& f = steps[k];
     f.side = side;

@@ -16,6 +16,11 @@ struct CommandLimits {
   double vx_rate = 0.5;
   double vy_max = 0.15;                // [m/s] either side
   double omega_max = 0.5;              // [rad/s] either side
+  // [m/s²], [rad/s²] the gait's sideways speed and turn rate change by at most these × step time per
+  // step, as vx does: a joystick reversed from one side to the other takes the robot through a few
+  // steps in place of one step from the outer foot straight onto the other side.
+  double vy_rate = 0.15;
+  double omega_rate = 0.5;
 };
 
 // The planner's view of the joystick (kept free of the controller's types).

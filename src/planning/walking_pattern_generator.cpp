@@ -206,6 +206,7 @@ void WalkingPatternGenerator::foot_at(Side side, double t, FootReference& foot) 
   foot.acceleration.setZero();
   foot.yaw_rate = 0.0;
   foot.in_contact = true;
+  foot.swing_progress = foot.swing_progress_rate = foot.time_to_touchdown = 0.0;
   for (int k = 0; k < num_steps_; ++k) {
     if (steps_[k].side != side) continue;
     const double lift_time = liftoff(k);
@@ -230,6 +231,9 @@ void WalkingPatternGenerator::foot_at(Side side, double t, FootReference& foot) 
     foot.yaw = math::wrap_angle(from.yaw + s * dyaw);
     foot.yaw_rate = ds_dtau / duration * dyaw;
     foot.in_contact = false;
+    foot.swing_progress = s;
+    foot.swing_progress_rate = ds_dtau / duration;
+    foot.time_to_touchdown = touchdown - t;
     return;
   }
   foot.position << from.position, params_.ankle_height;

@@ -42,6 +42,10 @@ struct FootReference {
   Eigen::Vector3d acceleration = Eigen::Vector3d::Zero();
   double yaw = 0.0, yaw_rate = 0.0;
   bool in_contact = true;
+  // In the swing: how far along the way to the foothold the foot is (the quintic blend s, 0 at
+  // lift-off, 1 at touchdown) and its rate [1/s]; the time left to touchdown [s]. 0 on the ground.
+  double swing_progress = 0.0, swing_progress_rate = 0.0;
+  double time_to_touchdown = 0.0;
 };
 
 // Everything the controller takes from the pattern at one instant.

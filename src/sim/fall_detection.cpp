@@ -4,7 +4,7 @@
 
 namespace biped {
 
-FallDetector::FallDetector(const RobotModel& plant, std::vector<TerrainFeature> terrain,
+FallDetector::FallDetector(const RobotModel& plant, Terrain terrain,
                            double standing_pelvis_height)
     : plant_(&plant),
       terrain_(std::move(terrain)),
@@ -20,7 +20,7 @@ const char* FallDetector::check(const mjData* d) const {
   const Eigen::Matrix3d upper_body = math::mat_from_mujoco(d->xmat + 9 * plant_->upper_body());
   if (math::tilt_from_vertical(upper_body) > kMaxTiltRad) return "upper body tilted more than 45 deg";
   const double* pelvis = d->xpos + 3 * plant_->pelvis_body();
-  const double height = pelvis[2] - terrain_height(terrain_, pelvis[0]);
+  const double height = pelvis[2] - terrain_.height({pelvis[0], pelvis[1]});
   if (height < kMinPelvisHeightRatio * standing_pelvis_height_) return "pelvis below 60% of standing height";
   for (int i = 0; i < d->ncon; ++i) {
     const int b1 = m->geom_bodyid[d->contact[i].geom1];

@@ -7,13 +7,13 @@
 #include <vector>
 
 #include "model/robot_model.hpp"
-#include "sim/world.hpp"
+#include "sim/terrain.hpp"
 
 namespace biped {
 
 class FallDetector {
  public:
-  FallDetector(const RobotModel& plant, std::vector<TerrainFeature> terrain, double standing_pelvis_height);
+  FallDetector(const RobotModel& plant, Terrain terrain, double standing_pelvis_height);
   // nullptr while standing or walking; otherwise what made it a fall.
   const char* check(const mjData* d) const;
 
@@ -22,7 +22,7 @@ class FallDetector {
 
  private:
   const RobotModel* plant_;
-  std::vector<TerrainFeature> terrain_;
+  Terrain terrain_;
   double standing_pelvis_height_;
   std::vector<char> is_foot_body_;
 };

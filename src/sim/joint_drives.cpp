@@ -9,6 +9,7 @@ namespace biped {
 
 JointDrives::JointDrives(const RobotModel& plant, const DriveParams& params)
     : plant_(plant),
+      params_(params),
       kv_(plant.num_joints()),
       ki_(plant.num_joints()),
       torque_limit_(plant.num_joints()),
@@ -44,6 +45,13 @@ JointDrives::JointDrives(const RobotModel& plant, const DriveParams& params)
   }
 }
 
+double available_torque(double torque, double velocity, double peak_torque, const DriveParams& params) {
+  if (torque * velocity <= 0.0) return peak_torque;
+  const double voltage_limit =
+      params.voltage_stall_ratio * peak_torque * std::max(0.0, 1.0 - std::abs(velocity) / params.no_load_speed);
+  return std::min(peak_torque, voltage_limit);
+}
+
 void JointDrives::reset() {
   integral_.setZero();
   target_rate_.setZero();
@@ -65,7 +73,8 @@ void JointDrives::apply(const mjModel* m, mjData* d, double dt) {
     const double qd = d->qvel[joints[i].dof_adr];
     const double velocity_error = position_gain_ * (target_[i] - q) + target_rate_[i] - qd;
     const double unsaturated = kv_[i] * velocity_error + ki_[i] * integral_[i];
-    const double limit = torque_limit_[i] > 0.0 ? torque_limit_[i] : std::abs(unsaturated);
+    const double limit = torque_limit_[i] > 0.0 ? available_torque(unsaturated, qd, torque_limit_[i], params_)
+                                                : std::abs(unsaturated);
     const double tau = std::clamp(unsaturated, -limit, limit);
     // Anti-windup: the integrator holds while the drive is saturated.
     if (tau == unsaturated) integral_[i] += velocity_error * dt;

@@ -45,7 +45,7 @@ SensorEmulationParams sensor_params(const SimulationParams& p, const RobotModel&
 }
 
 // Lowest point of the soles above the ground, with the robot at its current qpos.
-double sole_clearance(const RobotModel& plant, const mjData* d, const std::vector<TerrainFeature>& terrain) {
+double sole_clearance(const RobotModel& plant, const mjData* d, const Terrain& terrain) {
   const mjModel* m = plant.mj();
   double clearance = std::numeric_limits<double>::infinity();
   for (Side side : kSides) {
@@ -57,7 +57,7 @@ double sole_clearance(const RobotModel& plant, const mjData* d, const std::vecto
         const Eigen::Vector3d corner =
             center + rot * Eigen::Vector3d((c & 1 ? 1 : -1) * half.x(), (c & 2 ? 1 : -1) * half.y(),
                                            (c & 4 ? 1 : -1) * half.z());
-        clearance = std::min(clearance, corner.z() - terrain_height(terrain, corner.x()));
+        clearance = std::min(clearance, corner.z() - terrain.height(corner.head<2>()));
       }
     }
   }
@@ -68,15 +68,18 @@ double sole_clearance(const RobotModel& plant, const mjData* d, const std::vecto
 
 Simulation::Simulation(const SimulationParams& params, const RobotModel& controller_model)
     : params_(params),
+      terrain_(params.world.terrain),
       plant_(build_plant(params)),
-      data_(mj_makeData(plant_.mj())),
+      model_(const_cast<mjModel*>(plant_.mj())),
+      data_(mj_makeData(model_)),
       plant_joint_of_(map_joints(plant_, controller_model)),
       drives_(plant_, params.drives),
       sensors_(plant_, plant_joint_of_, sensor_params(params, plant_)),
-      sole_contact_(plant_, params.world.terrain, params.sole_contact),
+      sole_contact_(plant_, terrain_, params.sole_contact),
+      collision_gate_(model_, terrain_),
       pushes_(plant_, params.pushes),
       plant_setpoint_(plant_.stand_pose()),
-      fall_detector_(plant_, params.world.terrain, 1.0) {
+      fall_detector_(plant_, terrain_, 1.0) {
   const double ratio = params.control_period / params.world.timestep;
   steps_per_period_ = static_cast<int>(std::lround(ratio));
   if (steps_per_period_ < 1 || std::abs(ratio - steps_per_period_) > 1e-9) {
@@ -86,8 +89,9 @@ Simulation::Simulation(const SimulationParams& params, const RobotModel& control
 }
 
 void Simulation::reset() {
-  const mjModel* m = plant_.mj();
+  mjModel* m = model_;
   mjData* d = data_.get();
+  m->opt.disableflags &= ~mjDSBL_CONTACT;
   mj_resetData(m, d);
   Eigen::Map<Eigen::VectorXd>(d->qpos, m->nq) = plant_.stand_qpos();
   d->qpos[0] = 0.0;
@@ -95,17 +99,18 @@ void Simulation::reset() {
   mj_kinematics(m, d);
   // Start in static equilibrium: the soles sunk by the deflection that carries the weight.
   const double sink = plant_.total_mass() * std::abs(m->opt.gravity[2]) / (2.0 * params_.sole_contact.stiffness_per_foot);
-  d->qpos[2] -= sole_clearance(plant_, d, params_.world.terrain) + sink;
+  d->qpos[2] -= sole_clearance(plant_, d, terrain_) + sink;
   sole_contact_.reset();
   sensors_.reset();
   mj_forward(m, d);
   sole_contact_.apply(m, d);
   mj_forward(m, d);  // sensors now see the contact forces
-  standing_pelvis_height_ = d->xpos[3 * plant_.pelvis_body() + 2] - terrain_height(params_.world.terrain, 0.0);
-  fall_detector_ = FallDetector(plant_, params_.world.terrain, standing_pelvis_height_);
+  standing_pelvis_height_ = d->xpos[3 * plant_.pelvis_body() + 2] - terrain_.height(Eigen::Vector2d::Zero());
+  fall_detector_ = FallDetector(plant_, terrain_, standing_pelvis_height_);
   plant_setpoint_ = plant_.stand_pose();
   drives_.reset();
   drives_.set_targets(plant_setpoint_, params_.control_period);
+  collision_gate_.reset(m, d);
   gait_.reset();
   pushes_.reset();
   fall_reason_ = nullptr;
@@ -120,9 +125,10 @@ void Simulation::command(const JointCommand& setpoints) {
 }
 
 void Simulation::advance() {
-  const mjModel* m = plant_.mj();
+  mjModel* m = model_;
   mjData* d = data_.get();
   for (int step = 0; step < steps_per_period_; ++step) {
+    if (params_.collision_gate) collision_gate_.update(m, d);
     mj_step1(m, d);
     mju_zero(d->xfrc_applied, 6 * m->nbody);
     // The gait events from the last step's sole forces, then the pushes they time.

@@ -12,6 +12,7 @@
 #include "interface/commands.hpp"
 #include "interface/sensor_data.hpp"
 #include "model/robot_model.hpp"
+#include "sim/collision_gate.hpp"
 #include "sim/disturbances.hpp"
 #include "sim/fall_detection.hpp"
 #include "sim/joint_drives.hpp"
@@ -40,6 +41,9 @@ struct SimulationParams {
   std::vector<Push> pushes;
   unsigned long long seed = 1;
   double software_limit_margin_rad = kSoftwareLimitMarginRad;
+  // MuJoCo's collision detection only for steps in which a robot geom is near the ground (false:
+  // every step; a run is the same either way, only slower).
+  bool collision_gate = true;
 };
 
 class Simulation {
@@ -64,7 +68,9 @@ class Simulation {
   const mjData* data() const { return data_.get(); }
   const JointDrives& drives() const { return drives_; }
   const SensorEmulation& sensors() const { return sensors_; }
+  const Terrain& terrain() const { return terrain_; }
   const SoleContact& sole_contact() const { return sole_contact_; }
+  const CollisionGate& collision_gate() const { return collision_gate_; }
   // Touchdowns and single supports of the ground truth, and when each push started.
   const GaitEvents& gait_events() const { return gait_; }
   const PushSchedule& pushes() const { return pushes_; }
@@ -80,12 +86,16 @@ class Simulation {
     void operator()(mjData* d) const { mj_deleteData(d); }
   };
   SimulationParams params_;
+  Terrain terrain_;
   RobotModel plant_;
+  // The simulator's own world model, written during a run: the collision gate's flag.
+  mjModel* model_;
   std::unique_ptr<mjData, MjDataDeleter> data_;
   std::vector<int> plant_joint_of_;
   JointDrives drives_;
   SensorEmulation sensors_;
   SoleContact sole_contact_;
+  CollisionGate collision_gate_;
   GaitEvents gait_;
   PushSchedule pushes_;
   Eigen::VectorXd plant_setpoint_;

@@ -12,7 +12,6 @@
 namespace biped {
 namespace {
 
-constexpr double kDegToRad = M_PI / 180.0;
 constexpr double kTerrainHalfWidth = 20.0;   // [m] lateral extent of terrain blocks
 constexpr double kTerrainStart = -20.0;      // [m] terrain blocks cover x from here ...
 constexpr double kTerrainEnd = 100.0;        // ... to here
@@ -21,65 +20,105 @@ constexpr double kBlockDepth = 0.5;          // [m] thickness of terrain blocks 
 constexpr const char* kGroundTint = " rgba=\"1 1 1 1\"";
 constexpr const char* kTerrainTint = " rgba=\"0.75 0.85 1 1\"";
 
-struct Segment {
-  double x0, x1;  // along x
-  double z0, z1;  // ground height at x0 and x1
-};
+using Polygon = std::vector<Eigen::Vector2d>;
 
-std::vector<TerrainFeature> sorted(std::vector<TerrainFeature> terrain) {
-  std::sort(terrain.begin(), terrain.end(), [](const auto& a, const auto& b) { return a.x < b.x; });
-  return terrain;
+// The part of a convex polygon on the side of a line where normal·p − offset has the given sign.
+Polygon clip(const Polygon& in, const Terrain::Line& line, double sign) {
+  Polygon out;
+  for (std::size_t i = 0; i < in.size(); ++i) {
+    const Eigen::Vector2d& a = in[i];
+    const Eigen::Vector2d& b = in[(i + 1) % in.size()];
+    const double fa = sign * (line.normal.dot(a) - line.offset), fb = sign * (line.normal.dot(b) - line.offset);
+    if (fa >= 0.0) out.push_back(a);
+    if ((fa >= 0.0) != (fb >= 0.0)) out.push_back(a + fa / (fa - fb) * (b - a));
+  }
+  return out;
 }
 
-// Piecewise-linear ground profile: flat segments between features, inclined ones on slopes.
-std::vector<Segment> ground_profile(const std::vector<TerrainFeature>& unsorted) {
-  std::vector<Segment> segments;
-  double x = kTerrainStart, z = 0.0;
-  for (const TerrainFeature& f : sorted(unsorted)) {
-    const double start = std::max(f.x, x);
-    if (start > x) segments.push_back({x, start, z, z});
-    x = start;
-    if (f.kind == TerrainFeature::Kind::Step) {
-      z += f.height;
-    } else {
-      const double x1 = x + f.length;
-      const double z1 = z + f.length * std::tan(f.angle_deg * kDegToRad);
-      segments.push_back({x, x1, z, z1});
-      x = x1;
-      z = z1;
+double area_of(const Polygon& p) {
+  double twice = 0.0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const Eigen::Vector2d& a = p[i];
+    const Eigen::Vector2d& b = p[(i + 1) % p.size()];
+    twice += a.x() * b.y() - b.x() * a.y();
+  }
+  return 0.5 * twice;
+}
+
+// The ground area cut by every terrain line and every friction patch's edge into convex cells, on
+// each of which the ground is one plane with one friction coefficient.
+std::vector<Polygon> ground_cells(const Terrain& terrain) {
+  std::vector<Terrain::Line> lines = terrain.lines();
+  for (const TerrainFeature& f : terrain.features()) {
+    if (f.kind != TerrainFeature::Kind::Friction) continue;
+    const auto c = Terrain::corners(f);
+    for (int k = 0; k < 4; ++k) {
+      const Eigen::Vector2d edge = c[(k + 1) % 4] - c[k];
+      const Eigen::Vector2d normal = Eigen::Vector2d(edge.y(), -edge.x()).normalized();
+      lines.push_back({normal, normal.dot(c[k]), false});
     }
   }
-  segments.push_back({x, kTerrainEnd, z, z});
-  return segments;
+  std::vector<Polygon> cells = {{{kTerrainStart, -kTerrainHalfWidth},
+                                 {kTerrainEnd, -kTerrainHalfWidth},
+                                 {kTerrainEnd, kTerrainHalfWidth},
+                                 {kTerrainStart, kTerrainHalfWidth}}};
+  constexpr double kSmallestCell = 1e-6;  // [m²]
+  for (const Terrain::Line& line : lines) {
+    std::vector<Polygon> split;
+    for (const Polygon& cell : cells) {
+      for (double sign : {1.0, -1.0}) {
+        Polygon part = clip(cell, line, sign);
+        if (part.size() >= 3 && area_of(part) > kSmallestCell) split.push_back(std::move(part));
+      }
+    }
+    cells = std::move(split);
+  }
+  return cells;
 }
 
-std::string ground_xml(const WorldSpec& spec) {
-  std::ostringstream xml;
+// The terrain as MuJoCo geoms: one convex prism (a mesh) per ground cell, its top the ground's plane
+// there, kBlockDepth deep below its lowest corner. The meshes go into `assets`, the geoms into `body`.
+void terrain_xml(const WorldSpec& spec, const std::string& common, std::ostringstream& assets,
+                 std::ostringstream& body) {
+  const Terrain terrain(spec.terrain);
+  int k = 0;
+  for (const Polygon& cell : ground_cells(terrain)) {
+    Eigen::Vector2d centre = Eigen::Vector2d::Zero();
+    for (const Eigen::Vector2d& v : cell) centre += v;
+    centre /= static_cast<double>(cell.size());
+    const Terrain::Surface ground = terrain.surface(centre);
+    std::vector<double> top;
+    for (const Eigen::Vector2d& v : cell) top.push_back(ground.height + ground.gradient.dot(v - centre));
+    const double bottom = *std::min_element(top.begin(), top.end()) - kBlockDepth;
+    const int id = k++;
+    assets << "<mesh name=\"terrain_" << id << "\" vertex=\"";
+    for (std::size_t i = 0; i < cell.size(); ++i) {
+      assets << cell[i].x() << ' ' << cell[i].y() << ' ' << top[i] << ' ' << cell[i].x() << ' ' << cell[i].y() << ' '
+             << bottom << ' ';
+    }
+    assets << "\"/>\n";
+    const double mu = terrain.friction(centre, spec.ground_friction);
+    const bool raised = std::abs(ground.height) > 1e-9 || !ground.gradient.isZero();
+    body << "<geom name=\"terrain_" << id << "\" type=\"mesh\" mesh=\"terrain_" << id << "\"" << common
+         << " friction=\"" << mu << " 0.005 0.0001\""
+         // Tinted where the ground is not level or not the ground's friction, so features show.
+         << (raised || mu != spec.ground_friction ? kTerrainTint : kGroundTint) << "/>\n";
+  }
+}
+
+std::string ground_xml(const WorldSpec& spec, std::string& assets) {
+  std::ostringstream xml, mesh_assets;
   xml.precision(10);
-  const double mu = spec.ground_friction;
-  const std::string common = " contype=\"1\" conaffinity=\"2\" condim=\"3\" friction=\"" + std::to_string(mu) +
-                             " 0.005 0.0001\" material=\"ground\"";
+  mesh_assets.precision(10);
+  const std::string common = " contype=\"1\" conaffinity=\"2\" condim=\"3\" material=\"ground\"";
   xml << "<light name=\"sun\" pos=\"0 0 6\" dir=\"0 0 -1\" directional=\"true\"/>\n";
   if (spec.terrain.empty()) {
-    xml << "<geom name=\"ground\" type=\"plane\" size=\"0 0 1\"" << common << kGroundTint << "/>\n";
+    xml << "<geom name=\"ground\" type=\"plane\" size=\"0 0 1\"" << common << " friction=\"" << spec.ground_friction
+        << " 0.005 0.0001\"" << kGroundTint << "/>\n";
     return xml.str();
   }
-  int i = 0;
-  for (const Segment& s : ground_profile(spec.terrain)) {
-    const double dx = s.x1 - s.x0, dz = s.z1 - s.z0;
-    const double length = std::hypot(dx, dz);
-    const double pitch = std::atan2(dz, dx);
-    // Box whose top face runs from (x0, z0) to (x1, z1).
-    const double cx = 0.5 * (s.x0 + s.x1) + 0.5 * kBlockDepth * std::sin(pitch);
-    const double cz = 0.5 * (s.z0 + s.z1) - 0.5 * kBlockDepth * std::cos(pitch);
-    const int k = i++;
-    xml << "<geom name=\"terrain_" << k << "\" type=\"box\" pos=\"" << cx << " 0 " << cz << "\" size=\""
-        << 0.5 * length << " " << kTerrainHalfWidth << " " << 0.5 * kBlockDepth << "\" quat=\""
-        << std::cos(-0.5 * pitch) << " 0 " << std::sin(-0.5 * pitch) << " 0\""
-        << common
-        // Alternate tints, so every step and slope edge shows in a video.
-        << (k % 2 ? kTerrainTint : kGroundTint) << "/>\n";
-  }
+  terrain_xml(spec, common, mesh_assets, xml);
+  assets = mesh_assets.str();
   return xml.str();
 }
 
@@ -102,19 +141,12 @@ void apply_model_error(mjModel* m, const ModelErrorSpec& error) {
 
 }  // namespace
 
-double terrain_height(const std::vector<TerrainFeature>& terrain, double x) {
-  if (terrain.empty()) return 0.0;
-  for (const Segment& s : ground_profile(terrain)) {
-    if (x >= s.x0 && x < s.x1) return s.z0 + (x - s.x0) / (s.x1 - s.x0) * (s.z1 - s.z0);
-  }
-  return 0.0;
-}
-
 mjModel* build_world(const WorldSpec& spec) {
   std::string xml = read_text(spec.robot_mjcf);
   const auto end_of_world = xml.rfind("</worldbody>");
   if (end_of_world == std::string::npos) throw ModelError(spec.robot_mjcf + ": no <worldbody> element");
-  xml.insert(end_of_world, ground_xml(spec));
+  std::string terrain_meshes;
+  xml.insert(end_of_world, ground_xml(spec, terrain_meshes));
   // Looks only (videos, viewers): a checkered ground shows the robot's motion, a sky the horizon.
   // A second <asset> element is valid MJCF, so the robot file keeps its own.
   xml.insert(xml.rfind("<worldbody", end_of_world),
@@ -123,8 +155,8 @@ mjModel* build_world(const WorldSpec& spec) {
              " width=\"64\" height=\"384\"/>\n"
              "<texture name=\"checker\" type=\"2d\" builtin=\"checker\" rgb1=\"0.78 0.72 0.62\" rgb2=\"0.6 0.55 0.47\""
              " width=\"256\" height=\"256\" mark=\"edge\" markrgb=\"0.45 0.42 0.36\"/>\n"
-             "<material name=\"ground\" texture=\"checker\" texrepeat=\"2 2\" texuniform=\"true\"/>\n"
-             "</asset>\n");
+             "<material name=\"ground\" texture=\"checker\" texrepeat=\"2 2\" texuniform=\"true\"/>\n" +
+                 terrain_meshes + "</asset>\n");
 
   // Compile from memory; the robot file needs no other files (no meshes, no includes).
   auto vfs = std::make_unique<mjVFS>();
@@ -143,10 +175,12 @@ mjModel* build_world(const WorldSpec& spec) {
     throw ModelError(spec.robot_mjcf + ": the model has no body named 'upper_body'");
   }
   m->opt.timestep = spec.timestep;
-  // Elliptic friction cones and the CG solver: the fastest accurate settings measured for a biped
-  // on 2.2.2 (see docs/simulation.md).
+  // Elliptic friction cones and the Newton solver stopped at a relative improvement of 1e-5: while
+  // the robot walks the solver has only the joints' friction-loss rows, which Newton solves in one
+  // or two iterations where CG took many (docs/simulation.md: lola-walk 13x -> 23x real time).
   m->opt.cone = mjCONE_ELLIPTIC;
-  m->opt.solver = mjSOL_CG;
+  m->opt.solver = mjSOL_NEWTON;
+  m->opt.tolerance = 1e-5;
   for (int g = 0; g < m->ngeom; ++g) {
     m->geom_solref[2 * g] = spec.contact_timeconst;
     m->geom_solref[2 * g + 1] = spec.contact_dampratio;

@@ -7,16 +7,9 @@
 #include <string>
 #include <vector>
 
-namespace biped {
+#include "sim/terrain.hpp"
 
-struct TerrainFeature {
-  enum class Kind { Step, Slope };
-  Kind kind = Kind::Step;
-  double x = 0.0;          // [m] where the feature starts along the world x axis
-  double height = 0.0;     // step: change of ground level [m] (negative: step down)
-  double angle_deg = 0.0;  // slope: inclination, positive rising along +x
-  double length = 2.0;     // slope: horizontal length [m], flat again after it
-};
+namespace biped {
 
 struct ModelErrorSpec {
   double upper_body_mass_scale = 1.0;
@@ -35,9 +28,6 @@ struct WorldSpec {
   std::vector<TerrainFeature> terrain;
   ModelErrorSpec model_error;
 };
-
-// Ground height profile along x built from the terrain features (ground level 0 before the first).
-double terrain_height(const std::vector<TerrainFeature>& terrain, double x);
 
 // Compiles the world; throws ModelError naming the robot file on failure. The caller owns the result
 // (free with mj_deleteModel).

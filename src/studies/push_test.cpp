@@ -45,7 +45,8 @@ nlohmann::json run_push_test(const Scenario& scenario, const RunConfig& config, 
   const double angle = options.direction_deg ? *options.direction_deg : direction_angle_deg(options.direction);
   if (!(options.phase >= 0.0 && options.phase <= 1.0)) throw InputError("--phase: must be between 0 and 1");
   Push push;
-  push.at_gait_moment = true;
+  push.at_gait_moment = !options.at_time;
+  push.t = options.at_time.value_or(0.0);
   push.moment.after_time = options.earliest;
   push.moment.phase = options.phase;
   push.duration = options.push_duration;
@@ -94,7 +95,7 @@ nlohmann::json run_push_test(const Scenario& scenario, const RunConfig& config, 
   }
   return {{"direction", options.direction_deg ? std::to_string(angle) : options.direction},
           {"direction_deg", angle},
-          {"phase", options.phase},
+          {"phase", options.at_time ? nlohmann::json(nullptr) : nlohmann::json(options.phase)},
           {"max_impulse_Ns", survived},
           {"push_time_s", std::isnan(push_time) ? nlohmann::json(nullptr) : nlohmann::json(push_time)},
           {"push_duration_s", options.push_duration},

@@ -20,6 +20,9 @@ struct PushTestOptions {
   std::string direction = "forward";
   std::optional<double> direction_deg;  // when set, overrides `direction`
   double phase = 0.5;                 // share of the single support at the push's start
+  // When set, the push starts at this time [s] instead of at a gait phase (a robot that stands
+  // has no single support).
+  std::optional<double> at_time;
   double earliest = 4.0;              // [s] push in the first single support that starts after this
   double max_impulse = 100.0;         // [N·s] upper end of the search
   double bracket_step = 4.0;          // [N·s] the search steps up by this until the first fall

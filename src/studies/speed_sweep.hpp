@@ -16,6 +16,7 @@ struct SpeedSweepOptions {
   double step = 0.1;         // [m/s]
   double ramp_rate = 0.2;    // [m/s²] the command rises to the target at this rate, from t = 1 s
   double hold = 10.0;        // [s] walking at the target speed
+  int jobs = 0;              // speeds simulated at once (0: every core)
 };
 
 // The scenario gives the robot, its parameters and the disturbances; its commands and duration are

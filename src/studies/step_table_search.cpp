@@ -8,6 +8,7 @@
 
 #include "model/multibody_zmp.hpp"
 #include "sim/closed_loop.hpp"
+#include "studies/campaign_engine.hpp"
 
 namespace biped {
 namespace {
@@ -37,6 +38,22 @@ double support_margin(const RobotModel& model, const PatternSample& s, const Eig
     best = std::max(best, sole_margin(model, a < 0.5 ? Side::Left : Side::Right, zmp, ankle, yaw));
   }
   return best;
+}
+
+// The first item (in order) for which `pred` holds, or null; evaluated `jobs` at a time in parallel,
+// so the answer is the one a serial search gives.
+template <class T, class Pred>
+const T* first_where(const std::vector<const T*>& items, int jobs, const Pred& pred) {
+  const std::size_t batch = static_cast<std::size_t>(jobs > 0 ? jobs : available_cores());
+  for (std::size_t start = 0; start < items.size(); start += batch) {
+    const long n = static_cast<long>(std::min(batch, items.size() - start));
+    const std::vector<char> ok =
+        parallel_map<char>(n, jobs, [&](long i) -> char { return pred(*items[start + static_cast<std::size_t>(i)]); });
+    for (long i = 0; i < n; ++i) {
+      if (ok[static_cast<std::size_t>(i)]) return items[start + static_cast<std::size_t>(i)];
+    }
+  }
+  return nullptr;
 }
 
 }  // namespace
@@ -140,11 +157,14 @@ StepTable generate_step_table(const RobotModel& model, const WalkingControllerPa
       std::vector<Candidate> list;
       for (double step_time : search.step_times) {
         if (in_window && std::abs(step_time - faster_step_time) > search.max_step_time_change + 1e-9) continue;
-        for (double ds : search.double_support_ratios) {
-          list.push_back({step_time, ds, evaluate_step_candidate(model, base, speed, step_time, ds, search.steps,
-                                                                 search.settle_steps)});
-        }
+        for (double ds : search.double_support_ratios) list.push_back({step_time, ds, {}});
       }
+      const std::vector<CandidateResult> results = parallel_map<CandidateResult>(
+          static_cast<long>(list.size()), search.jobs, [&](long i) {
+            const Candidate& c = list[static_cast<std::size_t>(i)];
+            return evaluate_step_candidate(model, base, speed, c.step_time, c.ds, search.steps, search.settle_steps);
+          });
+      for (std::size_t i = 0; i < list.size(); ++i) list[i].result = results[i];
       return list;
     };
     std::vector<Candidate> candidates = evaluate(windowed);
@@ -159,14 +179,16 @@ StepTable generate_step_table(const RobotModel& model, const WalkingControllerPa
       return !sim || survives_in_simulation(model, base, *sim, speed, search.turn_rate, c.step_time, c.ds, search.steps);
     };
     bool best_feasible = false;
+    std::vector<const Candidate*> admissible;
     for (const Candidate& c : candidates) {
       if (!c.result.feasible || c.result.zmp_margin <= 0.0) break;
-      if (!survives(c)) continue;
+      admissible.push_back(&c);
+    }
+    if (const Candidate* c = first_where(admissible, search.jobs, survives)) {
       best_feasible = true;
-      best.step_time = c.step_time;
-      best.double_support_ratio = c.ds;
-      best.zmp_margin = c.result.zmp_margin;
-      break;
+      best.step_time = c->step_time;
+      best.double_support_ratio = c->ds;
+      best.zmp_margin = c->result.zmp_margin;
     }
     // Longer steps where the margin is (nearly) as large: fewer touchdowns, lower joint rates.
     if (best_feasible) {
@@ -179,12 +201,10 @@ StepTable generate_step_table(const RobotModel& model, const WalkingControllerPa
       }
       std::stable_sort(longer.begin(), longer.end(),
                        [](const Candidate* a, const Candidate* b) { return a->step_time > b->step_time; });
-      for (const Candidate* c : longer) {
-        if (!survives(*c)) continue;
+      if (const Candidate* c = first_where(longer, search.jobs, survives)) {
         best.step_time = c->step_time;
         best.double_support_ratio = c->ds;
         best.zmp_margin = c->result.zmp_margin;
-        break;
       }
     }
     if (!best_feasible) {  // the row records the best candidate and says so with a margin ≤ 0

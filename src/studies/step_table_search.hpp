@@ -39,6 +39,9 @@ struct StepTableSearch {
   // [m] a longer step time within this of the largest margin is preferred.
   double margin_tolerance = 0.005;
   double turn_rate = 0.15;  // [rad/s] of the closed-loop check
+  // Threads for the candidates of a speed (0: every core; studies/campaign_engine.hpp's parallel
+  // map). The choice is the serial search's whatever the number.
+  int jobs = 0;
 };
 
 struct CandidateResult {

@@ -44,5 +44,11 @@ for layer in control planning model interface math; do
     status=1
   fi
 done
+for layer in math interface model planning control sim io; do
+  if grep -n '#include <mpi.h>' "$layer"/*; then
+    echo "^ $layer/ uses MPI (only studies/ and apps/ may)"
+    status=1
+  fi
+done
 [ $status -eq 0 ] && echo "layers: every include and MuJoCo use where docs/architecture.md allows it"
 exit $status

@@ -195,6 +195,40 @@ TEST(WalkingPlan, ForwardSpeedRampsByAtMostTheRatePerStep) {
   EXPECT_NEAR(previous_speed, 0.0, 1e-9) << "the last step puts the feet side by side";
 }
 
+// A joystick reversed sideways and in turning at full deflection: the sideways speed and the turn
+// rate change by at most their rates × step time per step, and walking sideways the feet never
+// come closer than the step width (the trailing foot closes to it, the leading one steps out).
+TEST(WalkingPlan, ReversalsRampSidewaysSpeedAndTurnRateAndKeepTheFeetApart) {
+  PlanFixture f;
+  const CommandLimits& limits = f.params.limits;
+  double narrowest = 1.0;
+  std::size_t seen = 0;
+  const auto check_width = [&] {
+    if (f.touchdowns.size() == seen) return;
+    seen = f.touchdowns.size();
+    const PatternSample& s = f.plan.sample();
+    const double yaw = s.feet[0].yaw;
+    const Eigen::Vector2d gap = (s.feet[0].position - s.feet[1].position).head<2>();
+    narrowest = std::min(narrowest, -std::sin(yaw) * gap.x() + std::cos(yaw) * gap.y());
+  };
+  f.run(4.0, walk(0.0, limits.vy_max), check_width);
+  f.run(8.0, walk(0.0, -limits.vy_max), check_width);
+  ASSERT_GT(f.touchdowns.size(), 6u);
+  EXPECT_GE(narrowest, f.step_width() - 1e-9);
+  f.run(12.0, walk(0.2, 0.0, limits.omega_max));
+  f.run(16.0, walk(0.2, 0.0, -limits.omega_max));
+
+  const double max_turn_change = limits.omega_rate * f.step_time() * f.step_time();
+  double largest_turn_change = 0.0;
+  for (std::size_t i = 2; i < f.touchdowns.size(); ++i) {
+    const double turn = f.touchdowns[i].planned.yaw - f.touchdowns[i - 1].planned.yaw;
+    const double previous_turn = f.touchdowns[i - 1].planned.yaw - f.touchdowns[i - 2].planned.yaw;
+    largest_turn_change = std::max(largest_turn_change, std::abs(turn - previous_turn));
+  }
+  EXPECT_LE(largest_turn_change, max_turn_change + 1e-9);
+  EXPECT_NEAR(largest_turn_change, max_turn_change, 1e-9) << "the ramp is what limits it";
+}
+
 TEST(WalkingPlan, CommandBeyondTheLimitsIsSaturatedAndSaysSo) {
   const CommandLimits limits;
   for (const WalkCommand& beyond : {walk(limits.vx_max + 1.0), walk(limits.vx_min - 0.1), walk(0.2, limits.vy_max + 0.1),

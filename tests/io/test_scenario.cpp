@@ -94,6 +94,49 @@ TEST(Scenario, BadInputNamesFileKeyAndLine) {
   EXPECT_NE(error_of("robot: lola\nduration: 1\n", {"sensors.delay_cycles=-3"}).find("(--set)"), std::string::npos);
 }
 
+// Terrain in the plane: every feature kind placed and turned anywhere; bad values and overlapping
+// friction patches name the feature's key.
+TEST(Scenario, TerrainFeaturesInThePlane) {
+  const Scenario s = load_scenario(write_scenario("plane", R"(robot: lola
+duration: 1
+terrain:
+  - {type: step, x: 1, y: 0.5, heading_deg: 30, height: 0.02}
+  - {type: slope, x: 0, y: -1, heading_deg: 90, angle_deg: -4, length: 1}
+  - {type: box, x: 2, y: 0.2, heading_deg: 15, length: 1.2, width: 0.3, height: 0.03}
+  - {type: friction, x: 3, length: 1, width: 2, mu: 0.2}
+)"));
+  ASSERT_EQ(s.terrain.size(), 4u);
+  EXPECT_EQ(s.terrain[0].at, Eigen::Vector2d(1.0, 0.5));
+  EXPECT_DOUBLE_EQ(s.terrain[0].heading_deg, 30.0);
+  EXPECT_DOUBLE_EQ(s.terrain[1].heading_deg, 90.0);
+  EXPECT_EQ(s.terrain[2].kind, TerrainFeature::Kind::Box);
+  EXPECT_DOUBLE_EQ(s.terrain[2].width, 0.3);
+  EXPECT_EQ(s.terrain[3].kind, TerrainFeature::Kind::Friction);
+  EXPECT_DOUBLE_EQ(s.terrain[3].friction, 0.2);
+  const std::string head = "robot: lola\nduration: 1\nterrain:\n";
+  EXPECT_NE(error_of(head + "  - {type: box, x: 1, length: 1, width: -1, height: 0.1}\n").find("key 'terrain.0.width'"),
+            std::string::npos);
+  EXPECT_NE(error_of(head + "  - {type: box, x: 1, length: 1, height: 0.1}\n").find("key 'terrain.0.width': missing"),
+            std::string::npos);
+  EXPECT_NE(error_of(head + "  - {type: friction, x: 1, length: 1, width: 1}\n").find("key 'terrain.0.mu': missing"),
+            std::string::npos);
+  EXPECT_NE(error_of(head + "  - {type: step, x: 1, height: 0.1, heading: 3}\n").find("key 'terrain.0.heading'"),
+            std::string::npos);
+  const std::string overlap = error_of(head +
+                                       "  - {type: friction, x: 1, length: 1, width: 1, mu: 0.2}\n"
+                                       "  - {type: step, x: 1, height: 0.02}\n"
+                                       "  - {type: friction, x: 1.4, y: 0.4, heading_deg: 45, length: 1, width: 0.2, mu: 0.5}\n");
+  EXPECT_NE(overlap.find(":6: key 'terrain.2': friction patch overlaps the one of terrain.0"), std::string::npos)
+      << overlap;
+  EXPECT_EQ(error_of(head +
+                     "  - {type: friction, x: 1, length: 1, width: 1, mu: 0.2}\n"
+                     "  - {type: friction, x: 2.01, length: 1, width: 1, mu: 0.5}\n"
+                     "  - {type: box, x: 1, length: 1, width: 1, height: 0.05}\n"
+                     "  - {type: box, x: 1.2, length: 1, width: 1, height: 0.05}\n"),
+            "")
+      << "boxes add up; patches side by side do not overlap";
+}
+
 const char* kPlain = "robot: lola\nduration: 1\n";
 
 // The robot file's `sensors` section: noise, per-run errors, one cycle of delay, the attitude filter.

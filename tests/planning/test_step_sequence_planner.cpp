@@ -52,6 +52,25 @@ TEST(StepSequencePlanner, ConstantTurnPlacesFootprintsOnACircle) {
   }
 }
 
+// Sideways the foot on the side of the motion leads by 2·vy·T and the other closes to the step
+// width: the feet never come closer than the width, and the robot moves vy·T per step on average.
+TEST(StepSequencePlanner, SidewaysTheLeadingFootStepsOutAndTheTrailingOneClosesToTheWidth) {
+  StepParameters p;
+  p.step_time = 0.8;
+  for (const double vy : {0.15, -0.15}) {
+    const Side trailing = vy > 0.0 ? Side::Right : Side::Left;
+    const double outward = trailing == Side::Left ? -1.0 : 1.0;  // the stance (leading) foot's side
+    const Footstep stance{other(trailing), {0.0, outward * 0.5 * p.step_width}, 0.0, 0.0};
+    std::array<Footstep, 3> steps;
+    plan_steps(stance, VelocityCommand{0.0, vy, 0.0}, p, 1.0, 3, steps);
+    EXPECT_EQ(steps[0].side, trailing);
+    EXPECT_NEAR(std::abs(stance.position.y() - steps[0].position.y()), p.step_width, 1e-12) << "trailing closes";
+    EXPECT_NEAR(std::abs(steps[1].position.y() - steps[0].position.y()), p.step_width + 2.0 * std::abs(vy) * p.step_time,
+                1e-12) << "leading steps out";
+    EXPECT_NEAR(steps[2].position.y() - steps[0].position.y(), 2.0 * vy * p.step_time, 1e-12) << "vy on average";
+  }
+}
+
 TEST(StepSequencePlanner, ZeroCommandPlacesTheFeetSideBySide) {
   StepParameters p;
   const Footstep left{Side::Left, {1.0, 0.3}, 0.2, 0.0};

@@ -110,3 +110,58 @@ TEST(JointDrives, NoStaticErrorUnderLoad) {
 
 }  // namespace
 }  // namespace biped
+
+
+namespace biped {
+namespace {
+
+// The speed–torque envelope: the full peak torque at rest and whenever the drive brakes; while
+// motoring, the voltage limit's line from the corner speed down to nothing at the no-load speed.
+TEST(JointDrives, SpeedTorqueEnvelope) {
+  DriveParams params;
+  params.no_load_speed = 10.0;
+  params.voltage_stall_ratio = 4.0;
+  const double peak = 200.0;
+  EXPECT_DOUBLE_EQ(available_torque(1.0, 0.0, peak, params), peak);
+  EXPECT_DOUBLE_EQ(available_torque(-1.0, 7.0, peak, params), peak);  // braking
+  EXPECT_DOUBLE_EQ(available_torque(1.0, -9.9, peak, params), peak);
+  EXPECT_DOUBLE_EQ(available_torque(1.0, 7.5, peak, params), peak);   // the corner: 10·(1 − 1/4)
+  EXPECT_NEAR(available_torque(1.0, 9.0, peak, params), 0.4 * peak, 1e-9);
+  EXPECT_NEAR(available_torque(-1.0, -9.0, peak, params), 0.4 * peak, 1e-9);
+  EXPECT_DOUBLE_EQ(available_torque(1.0, 12.0, peak, params), 0.0);
+}
+
+// A joint driven towards a far target runs into the envelope: the servo's torque is cut to the
+// voltage limit at speed, but not when the drive brakes.
+TEST(JointDrives, ServoTorqueIsCutBeyondTheCornerSpeed) {
+  const RobotModel model = test::load_model("lola");
+  DriveParams params;
+  JointDrives drives(model, params);
+  RobotData data(model);
+  const mjModel* m = model.mj();
+  Eigen::Map<Eigen::VectorXd>(data.mj()->qpos, m->nq) = model.stand_qpos();
+  const Eigen::VectorXd far = model.stand_pose().array() + 1.0;
+  drives.set_targets(far, 0.001);
+  drives.set_targets(far, 0.001);
+  const double fast = 0.95 * params.no_load_speed;
+  // Even joints move towards the target (motoring), odd ones away from it (braking).
+  for (int i = 0; i < model.num_joints(); ++i) data.mj()->qvel[model.joints()[i].dof_adr] = i % 2 ? -fast : fast;
+  drives.apply(m, data.mj(), 0.001);
+  for (int i = 0; i < model.num_joints(); ++i) {
+    const JointInfo& j = model.joints()[i];
+    int actuator = -1;
+    for (int a = 0; a < m->nu; ++a) {
+      if (m->actuator_trnid[2 * a] == j.mj_joint) actuator = a;
+    }
+    const double tau = data.mj()->ctrl[actuator] * m->actuator_gear[6 * actuator];
+    if (i % 2 == 0) {
+      EXPECT_NEAR(tau, available_torque(1.0, fast, j.torque_limit, params), 1e-9) << j.name;
+      EXPECT_LT(tau, 0.5 * j.torque_limit) << j.name;
+    } else {
+      EXPECT_NEAR(tau, j.torque_limit, 1e-9) << j.name << " brakes with the full torque";
+    }
+  }
+}
+
+}  // namespace
+}  // namespace biped

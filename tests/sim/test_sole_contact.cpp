@@ -2,6 +2,11 @@
 
 #include <gtest/gtest.h>
 
+#include <fstream>
+#include <map>
+#include <memory>
+
+#include "math/rotations.hpp"
 #include "sim/simulation.hpp"
 #include "test_support.hpp"
 
@@ -17,6 +22,15 @@ void hold_stand_pose(Simulation& sim, const RobotModel& model, int cycles) {
   }
 }
 
+Eigen::Vector3d world_point(const mjData* d, int body, const Eigen::Vector3d& local) {
+  return Eigen::Vector3d(d->xpos + 3 * body) + math::mat_from_mujoco(d->xmat + 9 * body) * local;
+}
+
+Eigen::Vector3d patch_point(const SoleContact& contact, const SoleContact::Patch& p, const mjData* d) {
+  const SoleFace& f = contact.faces()[p.face];
+  return world_point(d, f.body, f.center + f.axes.col(0) * p.point.x() + f.axes.col(1) * p.point.y());
+}
+
 // The sole sinks by the load it carries divided by its stiffness (N/m, robots.md).
 TEST(SoleContact, DeflectionFollowsThePhysicalStiffness) {
   const RobotModel model = test::load_model("lola");
@@ -27,21 +41,167 @@ TEST(SoleContact, DeflectionFollowsThePhysicalStiffness) {
     Simulation sim(p, model);
     hold_stand_pose(sim, model, 1500);
     for (Side side : kSides) {
+      // The stiffness is shared equally by the grid points: their mean depth is load / stiffness.
       double depth_sum = 0.0;
-      int n = 0;
-      const mjData* d = sim.data();
-      for (const auto& c : sim.sole_contact().points()) {
-        if (c.side != index_of(side)) continue;
-        const Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> R(d->xmat + 9 * c.body);
-        const Eigen::Vector3d p_world = Eigen::Vector3d(d->xpos + 3 * c.body) + R * c.local;
-        depth_sum += -p_world.z();
-        ++n;
+      int points = 0;
+      for (const auto& c : sim.sole_contact().patches()) {
+        if (sim.sole_contact().faces()[c.face].side != index_of(side)) continue;
+        depth_sum += -patch_point(sim.sole_contact(), c, sim.data()).z();
+        ++points;
       }
       const double load = sim.sole_contact().normal_force(side);
       EXPECT_NEAR(load, 0.5 * 9.81 * sim.plant().total_mass(), 0.05 * 9.81 * sim.plant().total_mass());
-      EXPECT_NEAR(depth_sum / n, load / stiffness, 0.1 * load / stiffness) << stiffness;
+      EXPECT_NEAR(depth_sum / points, load / stiffness, 0.05 * load / stiffness) << stiffness;
     }
   }
+}
+
+// The grid: points at most 0.1 m apart, corners and edges included (LOLA: 3 × 3 on the heel face,
+// 2 × 3 on the toe face; JOHNNIE: 4 × 3); each patch reaches halfway to its neighbours, so the
+// patches tile the sole; each foot's stiffness is shared equally by its points.
+TEST(SoleContact, GridPointsTileTheSoleAndShareTheStiffness) {
+  for (const auto& [robot, counts] : std::map<std::string, std::vector<int>>{{"lola", {9, 6}}, {"johnnie", {12}}}) {
+    const RobotModel model = test::load_model(robot);
+    const SoleContactParams params;
+    const SoleContact contact(model, Terrain(), params);
+    std::vector<int> per_face(contact.faces().size(), 0);
+    std::vector<double> area(contact.faces().size(), 0.0);
+    double foot_stiffness = 0.0;
+    for (const auto& p : contact.patches()) {
+      ++per_face[p.face];
+      area[p.face] += p.area;
+      if (contact.faces()[p.face].side == index_of(Side::Left)) foot_stiffness += p.stiffness;
+    }
+    EXPECT_NEAR(foot_stiffness, params.stiffness_per_foot, 1e-6 * params.stiffness_per_foot) << robot;
+    for (std::size_t f = 0; f < counts.size(); ++f) {
+      EXPECT_EQ(per_face[f], counts[f]) << robot << " face " << f;
+      EXPECT_NEAR(area[f], 4.0 * contact.faces()[f].half_u * contact.faces()[f].half_v, 1e-12) << robot << " face " << f;
+    }
+  }
+}
+
+// The velocity of a point moving with a body agrees with the finite difference of its position.
+TEST(SoleContact, PointVelocityMatchesFiniteDifferences) {
+  const RobotModel model = test::load_model("lola");
+  const mjModel* m = model.mj();
+  mjData* d = mj_makeData(m);
+  mjData* moved = mj_makeData(m);
+  Eigen::Map<Eigen::VectorXd>(d->qpos, m->nq) = model.stand_qpos();
+  for (int i = 0; i < m->nv; ++i) d->qvel[i] = 0.3 * std::sin(1.7 * i + 0.4);  // every joint and the base moving
+  mj_forward(m, d);
+  const double h = 1e-7;
+  mju_copy(moved->qpos, d->qpos, m->nq);
+  mj_integratePos(m, moved->qpos, d->qvel, h);
+  mj_kinematics(m, moved);
+  for (const int body : {model.foot(Side::Left).body, mj_name2id(m, mjOBJ_BODY, "left_toe")}) {
+    const Eigen::Vector3d local(0.15, -0.06, -0.09);  // a sole corner, far from the body's centre of mass
+    const Eigen::Vector3d finite_difference = (world_point(moved, body, local) - world_point(d, body, local)) / h;
+    const Eigen::Vector3d v = point_velocity(m, d, body, world_point(d, body, local));
+    EXPECT_LT((v - finite_difference).norm(), 1e-5 * finite_difference.norm()) << body;
+  }
+  mj_deleteData(moved);
+  mj_deleteData(d);
+}
+
+// A loose 20 kg foot: a box with one sole face (0.2 × 0.1 m) under it, free in space, on terrain
+// with a step down of 5 cm at x = 0.
+struct LooseFoot {
+  mjModel* m = nullptr;
+  mjData* d = nullptr;
+  std::unique_ptr<SoleContact> contact;
+  explicit LooseFoot(double x, std::vector<TerrainFeature> terrain, double z = 0.0) {
+    const auto dir = test::fresh_dir("loose-foot");
+    const std::string file = (dir / "foot.xml").string();
+    std::ofstream(file) << "<mujoco><option timestep=\"0.001\"/><worldbody><body name=\"foot\">"
+                           "<freejoint/><geom type=\"box\" size=\"0.1 0.05 0.02\" mass=\"20\" contype=\"0\""
+                           " conaffinity=\"0\"/></body></worldbody></mujoco>";
+    char error[500] = "";
+    m = mj_loadXML(file.c_str(), nullptr, error, sizeof(error));
+    EXPECT_NE(m, nullptr) << error;
+    d = mj_makeData(m);
+    d->qpos[0] = x;
+    d->qpos[2] = z + 0.02 - 20 * 9.81 / 4e5;  // resting: sunk by weight / stiffness
+    SoleFace face;
+    face.body = 1;
+    face.center = Eigen::Vector3d(0, 0, -0.02);
+    face.axes.col(2) = -Eigen::Vector3d::UnitZ();
+    face.axes.col(1) = -Eigen::Vector3d::UnitY();  // a right-handed (u, v, outward normal)
+    face.half_u = 0.1;
+    face.half_v = 0.05;
+    contact = std::make_unique<SoleContact>(std::vector<SoleFace>{face}, Terrain(terrain), SoleContactParams{});
+    mj_forward(m, d);
+  }
+  ~LooseFoot() {
+    mj_deleteData(d);
+    mj_deleteModel(m);
+  }
+  void step() {
+    mj_step1(m, d);
+    mju_zero(d->xfrc_applied, 6 * m->nbody);
+    contact->apply(m, d);
+    mj_step2(m, d);
+  }
+  double pitch() const { return std::atan2(-d->xmat[9 + 6], d->xmat[9 + 8]); }  // the foot's (body 1) about +y
+  // Total contact force and its centre of pressure (x) from the patches.
+  double pressure_centre_x() const {
+    double fz = 0.0, moment = 0.0;
+    for (const auto& p : contact->patches()) {
+      fz += p.force.z();
+      moment += p.force.z() * p.centre_of_pressure.x();
+    }
+    return moment / fz;
+  }
+};
+
+// Centre of mass over the upper level, the front 6 cm of the sole over the drop: the foot stays
+// nearly flat (within 2°: the patch across the edge carries only with its supported part, so the
+// sole is softer there) and the pressure stays on the supported part; the patches over the drop
+// carry nothing.
+TEST(SoleContact, FootHalfOnAStepEdgeRestsOnTheSupportedPart) {
+  LooseFoot foot(-0.04, {TerrainFeature::step(0.0, -0.05)});
+  for (int i = 0; i < 1000; ++i) foot.step();
+  EXPECT_LT(std::abs(foot.pitch()), 2.0 * M_PI / 180.0);
+  EXPECT_NEAR(foot.d->qpos[0], -0.04, 1e-3);
+  EXPECT_NEAR(foot.pressure_centre_x(), -0.04, 2e-3);
+  for (const auto& p : foot.contact->patches()) {
+    if (p.force.z() > 0.0) {
+      EXPECT_LE(p.centre_of_pressure.x(), 1e-9) << "force where the sole has no support";
+    }
+  }
+}
+
+// Centre of mass beyond the edge: the foot tips over the edge and its front comes to rest on the
+// lower level (it neither stays level on the edge nor falls through the upper level).
+TEST(SoleContact, FootOverAStepEdgeTipsOverTheEdge) {
+  LooseFoot foot(0.04, {TerrainFeature::step(0.0, -0.05)});
+  double lowest_heel = INFINITY;
+  for (int i = 0; i < 400; ++i) {
+    foot.step();
+    lowest_heel = std::min(lowest_heel, world_point(foot.d, 1, Eigen::Vector3d(-0.1, 0.0, -0.02)).z());
+  }
+  EXPECT_GT(foot.pitch(), 0.2) << "the front came to rest on the lower level";
+  EXPECT_GT(lowest_heel, -0.01) << "the heel stayed on the upper level";
+}
+
+// A foot shoved into a riser (5 cm step up at x = 0) below the upper level is stopped by the riser,
+// not lifted onto the step.
+TEST(SoleContact, ARiserStopsAFootBelowTheUpperLevel) {
+  LooseFoot foot(-0.102, {TerrainFeature::step(0.0, 0.05)});  // front 2 mm before the riser
+  foot.d->qvel[0] = 0.5;
+  const double start_z = foot.d->qpos[2];
+  double highest = start_z, hardest_push = 0.0, deepest = -1.0;
+  for (int i = 0; i < 300; ++i) {
+    foot.step();
+    highest = std::max(highest, foot.d->qpos[2]);
+    deepest = std::max(deepest, foot.d->qpos[0] + 0.1);
+    double fx = 0.0;
+    for (const auto& p : foot.contact->patches()) fx += p.force.x();
+    hardest_push = std::min(hardest_push, fx);
+  }
+  EXPECT_LT(hardest_push, -100.0) << "the riser pushed back";
+  EXPECT_LT(deepest, 0.01) << "the front went deep into the step";
+  EXPECT_LT(highest - start_z, 0.002) << "the foot was lifted onto the step";
+  EXPECT_LE(foot.d->qvel[0], 0.01);
 }
 
 // Coulomb friction: a steady 30 N horizontal push on the pelvis of the standing robot (weight ~390 N)
@@ -69,7 +229,7 @@ TEST(SoleContact, NoForceWithoutPenetration) {
   SimulationParams p;
   p.world.robot_mjcf = test::model_path("johnnie");
   Simulation sim(p, model);
-  SoleContact contact(sim.plant(), {{TerrainFeature::Kind::Step, -10.0, -0.1, 0.0, 0.0}}, {});
+  SoleContact contact(sim.plant(), Terrain({TerrainFeature::step(-10.0, -0.1)}), {});
   mjData* d = mj_makeData(sim.plant().mj());
   mju_copy(d->qpos, sim.data()->qpos, sim.plant().mj()->nq);
   mj_forward(sim.plant().mj(), d);
