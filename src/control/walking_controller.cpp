@@ -29,6 +29,7 @@ WalkingController::WalkingController(const RobotModel& model, const WalkingContr
       step_adaptation_(params.step_adaptation),
       com_estimator_(model),
       monitor_(model, params.sensor_limits),
+      calibration_(model, params.calibration),
       last_setpoint_(model.stand_pose()),
       substituted_sensors_(model.num_joints()) {}
 
@@ -39,6 +40,7 @@ void WalkingController::reset(const SensorData& first) {
   terrain_.reset();
   step_adaptation_.reset();
   monitor_.reset(first);
+  calibration_.reset(first.time);
   last_time_ = first.time;
   com_estimator_.reset();
 
@@ -70,7 +72,18 @@ void WalkingController::reset(const SensorData& first) {
 Eigen::Matrix3d WalkingController::heading_frame() const { return yaw_rotation(plan_.sample().heading); }
 
 void WalkingController::step(const SensorData& raw_sensors, const WalkCommand& command, JointCommand& out) {
-  const SensorData& sensors = detect_faults(raw_sensors);
+  const SensorData& checked = detect_faults(raw_sensors);
+  CalibrationContext context;
+  context.standing = plan_.state() == WalkingState::Standing;
+  context.plan = &plan_.sample();
+  context.imu_healthy = health().imu;
+  context.ft_healthy = health().force_torque;
+  const SensorData& sensors = calibration_.apply(checked, context, params_.rmrc.dt);
+  const math::TiltAngles tilt = math::tilt_against_gravity(sensors.imu_orientation.toRotationMatrix());
+  status_.upper_body_tilt = {tilt.sagittal, tilt.lateral};
+  status_.imu_misalignment = calibration_.misalignment();
+  status_.gyro_bias = calibration_.gyro_bias();
+  status_.ft_offset = calibration_.ft_offset();
   if (plan_.state() == WalkingState::Fallen || detect_fall(sensors)) {
     out.position = last_setpoint_;
     publish_status();

@@ -8,6 +8,7 @@
 
 #include "control/com_estimator.hpp"
 #include "control/resolved_motion_rate_control.hpp"
+#include "control/sensor_calibration.hpp"
 #include "control/sensor_monitor.hpp"
 #include "control/stabilizer.hpp"
 #include "control/step_adaptation.hpp"
@@ -27,6 +28,7 @@ struct WalkingControllerParams {
   TerrainAdaptationParams terrain;  // used with the stabilizer (it needs the F/T sensors)
   StepAdaptationParams step_adaptation;  // used with the stabilizer (it needs the state estimate)
   SensorLimits sensor_limits;
+  SensorCalibrationParams calibration;  // IMU and F/T errors estimated and removed (an extension)
   // [rad] the upper body tilted this far from vertical (IMU) is beyond recovery: the fallen state.
   double fall_tilt = 25.0 * M_PI / 180.0;
 };
@@ -42,7 +44,7 @@ class WalkingController final : public Controller {
   WalkingController(const RobotModel& model, const WalkingControllerParams& params);
 
   void reset(const SensorData& first) override;
-  // The stages of Fig. 3, in this order: detect_faults → advance the plan → adapt to the terrain →
+  // The stages of Fig. 3, in this order: detect_faults → calibrate → advance the plan → adapt to the terrain →
   // the task reference → stabilize → resolve rates (eq. 21) → publish the status.
   void step(const SensorData& sensors, const WalkCommand& command, JointCommand& out) override;
   const ControllerStatus& status() const override { return status_; }
@@ -53,6 +55,7 @@ class WalkingController final : public Controller {
   const ResolvedMotionRateControl& rmrc() const { return rmrc_; }
   const Stabilizer& stabilizer() const { return stabilizer_; }
   const TerrainAdaptation& terrain() const { return terrain_; }
+  const SensorCalibration& calibration() const { return calibration_; }
   const StepAdaptation& step_adaptation() const { return step_adaptation_; }
   const CycleTiming& timing() const { return timing_; }
   // The inputs eq. (21) got in the last cycle (to replay them, e.g. in the SVD baseline).
@@ -96,6 +99,7 @@ class WalkingController final : public Controller {
   StepAdaptation step_adaptation_;
   CoMEstimator com_estimator_;
   SensorMonitor monitor_;
+  SensorCalibration calibration_;
   FaultList new_faults_;
   ControllerStatus status_;
   CycleTiming timing_;

@@ -42,6 +42,14 @@ struct ControllerStatus {
   bool com_estimate_valid = false;
   std::array<double, 2> foot_height_offset{};  // [m] terrain adaptation's offset of each foot's planned height
   std::array<double, 2> foot_tilt{};           // [rad] terrain adaptation's tilt of each foot (toes down)
+  // [rad] the upper body's tilt against gravity (sagittal, lateral) as the controller uses it: the
+  // IMU's after the sensor calibration.
+  std::array<double, 2> upper_body_tilt{};
+  // The sensor calibration's estimates (zero while off): the IMU's roll/pitch misalignment [rad]
+  // (rotation vector, upper-body axes), the gyro bias [rad/s] and the F/T offsets, by Side.
+  Eigen::Vector3d imu_misalignment = Eigen::Vector3d::Zero();
+  Eigen::Vector3d gyro_bias = Eigen::Vector3d::Zero();
+  std::array<Wrench, 2> ft_offset;
   // Step adaptation: the DCM error (measured − planned) and the shift of the landing point of the
   // step in the air [m], heading frame (x forward, y left).
   Eigen::Vector2d dcm_error = Eigen::Vector2d::Zero();

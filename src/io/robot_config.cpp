@@ -181,6 +181,34 @@ const ParameterTable<StabilizerParams> kStabilizerParameters = {
      "stiffness adaptation: upper bound of the estimate as a multiple of C (at least 1)"},
 };
 
+const ParameterTable<SensorCalibrationParams> kSensorCalibrationParameters = {
+    {"enabled", &SensorCalibrationParams::enabled, "", {},
+     "estimate and remove the IMU's misalignment, gyro bias and drift and the F/T offsets"},
+    {"startup_time", &SensorCalibrationParams::startup_time, "s", kNonNegative,
+     "start-up estimation while standing after the reset (ends earlier with the first walking command)"},
+    {"ahrs_time_constant", &SensorCalibrationParams::ahrs_time_constant, "s", kNonNegative,
+     "the IMU attitude filter's time constant, to predict its tilt error from the gyro bias (0: none)"},
+    {"drift_time", &SensorCalibrationParams::drift_time, "s", kNonNegative,
+     "time constant of the tilt drift tracking on the loaded stance foot (0: off)"},
+    {"max_drift_deg", Degrees<SensorCalibrationParams>{&SensorCalibrationParams::max_drift}, "deg", kNonNegative,
+     "bound of the drift tracking's correction"},
+    {"max_misalignment_deg", Degrees<SensorCalibrationParams>{&SensorCalibrationParams::max_misalignment}, "deg",
+     kNonNegative, "a larger start-up estimate of the IMU's misalignment is not used"},
+    {"min_misalignment_deg", Degrees<SensorCalibrationParams>{&SensorCalibrationParams::min_misalignment}, "deg",
+     kNonNegative, "a smaller start-up estimate of the IMU's misalignment is not used (the flat-foot reference's accuracy)"},
+    {"max_gyro_bias", &SensorCalibrationParams::max_gyro_bias, "rad/s", kNonNegative,
+     "a larger start-up estimate of the gyro bias is not used"},
+    {"ft_swing_rezero", &SensorCalibrationParams::ft_swing_rezero, "", {}, "re-zero each F/T sensor in its foot's swing"},
+    {"swing_clearance", &SensorCalibrationParams::swing_clearance, "m", kNonNegative,
+     "F/T re-zeroing: planned swing height above the stance foot from which readings count"},
+    {"swing_force_band", &SensorCalibrationParams::swing_force_band, "N", kPositive,
+     "F/T re-zeroing: a swing reading further from the foot's weight touches something and is left out"},
+    {"max_force_offset", &SensorCalibrationParams::max_force_offset, "N", kNonNegative,
+     "a larger F/T force offset estimate is not used"},
+    {"max_torque_offset", &SensorCalibrationParams::max_torque_offset, "N·m", kNonNegative,
+     "a larger F/T torque offset estimate is not used"},
+};
+
 const ParameterTable<SensorLimits> kSensorLimitParameters = {
     {"max_force", &SensorLimits::max_force, "N", kPositive, "out of range: F/T force, per axis"},
     {"max_torque", &SensorLimits::max_torque, "N·m", kPositive, "out of range: F/T torque, per axis"},
@@ -263,7 +291,7 @@ ParameterSection controller_section(ControllerConfig& p) {
            {kStandingParameters, p.standing},
            {kWeightShiftParameters, p.weight_shift}},
           {"type", "model", "stance", "step_table", "limits", "stabilization", "sensor_limits", "terrain_adaptation",
-           "step_adaptation"}};
+           "step_adaptation", "calibration"}};
 }
 ParameterSection command_limits_section(CommandLimits& p) {
   return {"controller.limits", {{kCommandLimitParameters, p}}, {}};
@@ -273,6 +301,9 @@ ParameterSection stabilization_section(StabilizerParams& p) {
 }
 ParameterSection sensor_limits_section(SensorLimits& p) {
   return {"controller.sensor_limits", {{kSensorLimitParameters, p}}, {}};
+}
+ParameterSection calibration_section(SensorCalibrationParams& p) {
+  return {"controller.calibration", {{kSensorCalibrationParameters, p}}, {}};
 }
 ParameterSection terrain_adaptation_section(TerrainAdaptationParams& p) {
   return {"controller.terrain_adaptation", {{kTerrainAdaptationParameters, p}}, {}};
@@ -337,6 +368,7 @@ void read_controller(const YamlReader& r, const YAML::Node& c, ControllerConfig&
   read_section(r, r.mapping(c, "controller", "sensor_limits"), sensor_limits_section(w.sensor_limits));
   read_section(r, r.mapping(c, "controller", "terrain_adaptation"), terrain_adaptation_section(w.terrain));
   read_section(r, r.mapping(c, "controller", "step_adaptation"), step_adaptation_section(w.step_adaptation));
+  read_section(r, r.mapping(c, "controller", "calibration"), calibration_section(w.calibration));
 }
 
 void read_robot_file(const std::string& file, RunConfig& config) {
@@ -389,7 +421,7 @@ std::vector<ParameterDoc> parameter_reference() {
                             sensor_noise_section(sim.noise_levels), controller_section(controller),
                             command_limits_section(w.plan.limits), stabilization_section(w.stabilization),
                             sensor_limits_section(w.sensor_limits), terrain_adaptation_section(w.terrain),
-                            step_adaptation_section(w.step_adaptation)});
+                            step_adaptation_section(w.step_adaptation), calibration_section(w.calibration)});
 }
 
 RunConfig make_run_config(const Scenario& s) {

@@ -67,6 +67,7 @@ RunRecorder::RunRecorder(const Simulation& sim, std::ostream* csv) : csv_(csv) {
   }
   o << ",imu_phi_x_deg,imu_phi_y_deg";
   o << ",dcm_error_x,dcm_error_y,landing_shift_x,landing_shift_y";
+  o << ",est_phi_x_deg,est_phi_y_deg";
   for (int i = 0; i < sim.plant().mj()->nq; ++i) o << ",qpos_" << i;
   o << '\n';
 }
@@ -144,6 +145,8 @@ void RunRecorder::record(const Simulation& sim, const SensorData& sensors, const
   row.comma().fixed(measured.sagittal * kRadToDeg, 4).comma().fixed(measured.lateral * kRadToDeg, 4);
   row.comma().fixed(status.dcm_error.x(), 5).comma().fixed(status.dcm_error.y(), 5);
   row.comma().fixed(status.landing_shift.x(), 5).comma().fixed(status.landing_shift.y(), 5);
+  // The tilt as the controller uses it (after its sensor calibration).
+  row.comma().fixed(status.upper_body_tilt[0] * kRadToDeg, 4).comma().fixed(status.upper_body_tilt[1] * kRadToDeg, 4);
   for (int i = 0; i < m->nq; ++i) row.comma().general(d->qpos[i], 7);
   row_ += '\n';
   *csv_ << row_;
@@ -191,6 +194,14 @@ nlohmann::json RunRecorder::summary(const std::string& robot, const std::string&
   j["fault_after_fall"] = text_if(fault && after_fall);
   j["fault_time_s"] = fault && fault_seen_ ? nlohmann::json(fault_time_) : nlohmann::json(nullptr);
   j["command_saturated"] = command_saturated_;
+  // What the controller's sensor calibration estimated (all zero with it off).
+  const auto vec = [](const Eigen::Vector3d& v, double scale) { return nlohmann::json{v.x() * scale, v.y() * scale, v.z() * scale}; };
+  j["calibration"] = {{"imu_misalignment_deg", vec(final_status.imu_misalignment, kRadToDeg)},
+                      {"gyro_bias_rad_s", vec(final_status.gyro_bias, 1.0)},
+                      {"ft_offset_left", {{"force", vec(final_status.ft_offset[0].force, 1.0)},
+                                          {"torque", vec(final_status.ft_offset[0].torque, 1.0)}}},
+                      {"ft_offset_right", {{"force", vec(final_status.ft_offset[1].force, 1.0)},
+                                           {"torque", vec(final_status.ft_offset[1].torque, 1.0)}}}};
   return j;
 }
 
