@@ -470,13 +470,7 @@ CampaignSpec load_campaign_spec(const std::string& path, const std::vector<std::
   // the scenario does not know is named here rather than as an error in every run.
   auto try_on_scenario = [&](const std::string& scenario, const std::vector<std::string>& assignments,
                              const std::string& key) {
-    std::vector<std::string> parts;
-    for (std::size_t start = 0; start <= key.size();) {
-      const auto dot = key.find('.', start);
-      parts.push_back(key.substr(start, dot == std::string::npos ? std::string::npos : dot - start));
-      if (dot == std::string::npos) break;
-      start = dot + 1;
-    }
+    const std::vector<std::string> parts = split_dotted_key(key);
     // The node the key names (for its line); reset() rebinds, where `=` would assign into root.
     YAML::Node node;
     node.reset(root);

@@ -26,6 +26,17 @@ YAML::Node load_yaml_file(const std::string& path) {
   }
 }
 
+std::vector<std::string> split_dotted_key(const std::string& key) {
+  std::vector<std::string> parts;
+  for (std::size_t start = 0; start <= key.size();) {
+    const auto dot = key.find('.', start);
+    parts.push_back(key.substr(start, dot == std::string::npos ? std::string::npos : dot - start));
+    if (dot == std::string::npos) break;
+    start = dot + 1;
+  }
+  return parts;
+}
+
 void apply_override(YAML::Node& root, const std::string& assignment) {
   const auto eq = assignment.find('=');
   if (eq == std::string::npos || eq == 0) throw InputError("--set " + assignment + ": expected KEY=VALUE");
@@ -38,13 +49,7 @@ void apply_override(YAML::Node& root, const std::string& assignment) {
   }
   value.SetTag(kOverrideTag);
 
-  std::vector<std::string> parts;
-  for (std::size_t start = 0; start <= key.size();) {
-    const auto dot = key.find('.', start);
-    parts.push_back(key.substr(start, dot == std::string::npos ? std::string::npos : dot - start));
-    if (dot == std::string::npos) break;
-    start = dot + 1;
-  }
+  const std::vector<std::string> parts = split_dotted_key(key);
   // Walk down with copies of handles (YAML::Node assignment would rebind, not descend).
   std::vector<YAML::Node> path{root};
   for (std::size_t i = 0; i + 1 < parts.size(); ++i) {

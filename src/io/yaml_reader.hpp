@@ -23,6 +23,9 @@ YAML::Node load_yaml_file(const std::string& path);
 // e.g. commands.1.vx) to a document. The value is parsed as YAML.
 void apply_override(YAML::Node& root, const std::string& assignment);
 
+// The parts of a dotted key ("commands.1.vx" -> commands, 1, vx).
+std::vector<std::string> split_dotted_key(const std::string& key);
+
 class YamlReader {
  public:
   explicit YamlReader(std::string file) : file_(std::move(file)) {}
