@@ -10,6 +10,15 @@
 namespace biped {
 namespace {
 
+// The torque the drive of MuJoCo joint `joint` applies (its actuator's control times its gear).
+double applied_torque(const mjModel* m, const mjData* d, int joint) {
+  for (int a = 0; a < m->nu; ++a) {
+    if (m->actuator_trnid[2 * a] == joint) return d->ctrl[a] * m->actuator_gear[6 * a];
+  }
+  ADD_FAILURE() << "no actuator drives joint " << joint;
+  return 0.0;
+}
+
 // Gains follow from the loop bandwidths and the inertia each joint sees in the stand pose.
 TEST(JointDrives, GainsFollowTheLoopBandwidths) {
   const RobotModel model = test::load_model("lola");
@@ -48,11 +57,7 @@ TEST(JointDrives, TorqueSaturatesAtTheDriveLimit) {
   drives.apply(m, data.mj(), 0.001);
   for (int i = 0; i < model.num_joints(); ++i) {
     const JointInfo& j = model.joints()[i];
-    int actuator = -1;
-    for (int a = 0; a < m->nu; ++a) {
-      if (m->actuator_trnid[2 * a] == j.mj_joint) actuator = a;
-    }
-    EXPECT_NEAR(std::abs(data.mj()->ctrl[actuator] * m->actuator_gear[6 * actuator]), j.torque_limit, 1e-9) << j.name;
+    EXPECT_NEAR(std::abs(applied_torque(m, data.mj(), j.mj_joint)), j.torque_limit, 1e-9) << j.name;
   }
 }
 
@@ -149,11 +154,7 @@ TEST(JointDrives, ServoTorqueIsCutBeyondTheCornerSpeed) {
   drives.apply(m, data.mj(), 0.001);
   for (int i = 0; i < model.num_joints(); ++i) {
     const JointInfo& j = model.joints()[i];
-    int actuator = -1;
-    for (int a = 0; a < m->nu; ++a) {
-      if (m->actuator_trnid[2 * a] == j.mj_joint) actuator = a;
-    }
-    const double tau = data.mj()->ctrl[actuator] * m->actuator_gear[6 * actuator];
+    const double tau = applied_torque(m, data.mj(), j.mj_joint);
     if (i % 2 == 0) {
       EXPECT_NEAR(tau, available_torque(1.0, fast, j.torque_limit, params), 1e-9) << j.name;
       EXPECT_LT(tau, 0.5 * j.torque_limit) << j.name;
