@@ -386,7 +386,7 @@ void read_model_map(const YamlReader& r, const YAML::Node& n, ModelMap& map) {
   if (!n.IsDefined() || n.IsNull()) return;
   const std::string where = "model_map";
   r.expect_keys(n, where, {"root_body", "upper_body", "imu", "sole_suffix", "legs", "arms", "stand_keyframe",
-                           "stand_pose_deg", "torque_limits", "passive_joints"});
+                           "stand_pose_deg", "torque_limits", "passive_joints", "locked_joints"});
   map.root_body = r.text_or(n, where, "root_body", map.root_body);
   map.upper_body = r.text_or(n, where, "upper_body", map.upper_body);
   map.sole_suffix = r.text_or(n, where, "sole_suffix", map.sole_suffix);
@@ -436,9 +436,12 @@ void read_model_map(const YamlReader& r, const YAML::Node& n, ModelMap& map) {
     const std::string joint = entry.first.Scalar();
     map.torque_limits[joint] = r.positive_or(limits, "model_map.torque_limits", joint.c_str(), 0.0);
   }
-  for (const auto& joint : r.sequence(n, where, "passive_joints")) {
-    if (!joint.IsScalar()) r.fail(joint, "model_map.passive_joints", "must be a list of joint names");
-    map.passive_joints.push_back(joint.Scalar());
+  for (const char* key : {"passive_joints", "locked_joints"}) {
+    std::vector<std::string>& list = std::string(key) == "passive_joints" ? map.passive_joints : map.locked_joints;
+    for (const auto& joint : r.sequence(n, where, key)) {
+      if (!joint.IsScalar()) r.fail(joint, YamlReader::join(where, key), "must be a list of joint names");
+      list.push_back(joint.Scalar());
+    }
   }
 }
 

@@ -209,10 +209,11 @@ TEST_P(TaskSpaceTest, JacobianHasFullRowRankAtStandPose) {
 INSTANTIATE_TEST_SUITE_P(Robots, TaskSpaceTest, ::testing::Values(kLola, kJohnnie),
                          [](const auto& info) { return std::string(info.param.name); });
 
-// A passive joint (no drive: JVRC-1's coupled finger joints) is in no task's Jacobian.
-TEST(TaskSpacePassiveJoints, HaveZeroColumns) {
+// A passive joint (no drive: JVRC-1's coupled finger joints) and a locked one are in no task's Jacobian.
+TEST(TaskSpaceHeldJoints, HaveZeroColumns) {
   ModelMap map;
-  map.passive_joints = {"left_elbow", "head_pan"};
+  map.passive_joints = {"left_elbow"};
+  map.locked_joints = {"head_pan"};
   const RobotModel model = RobotModel::load(kLola.path, kMargin, map);
   const TaskSpace space(model);
   TaskSpaceData data(space);
