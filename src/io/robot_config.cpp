@@ -340,7 +340,8 @@ void read_stabilization(const YamlReader& r, const YAML::Node& n, StabilizerPara
   }
 }
 
-void read_controller(const YamlReader& r, const YAML::Node& c, ControllerConfig& p) {
+void read_controller(const YamlReader& r, const YAML::Node& c, ControllerConfig& p,
+                     MissingStepTable missing = MissingStepTable::Error) {
   read_section(r, c, controller_section(p));
   p.type = r.text_or(c, "controller", "type", p.type);
   if (p.type != "walking" && p.type != "standing" && p.type != "weight_shift") {
@@ -354,9 +355,12 @@ void read_controller(const YamlReader& r, const YAML::Node& c, ControllerConfig&
   // Before the limits: a scenario's limits.vx_max may still go beyond the table.
   if (c["step_table"]) {
     const std::string table = resolve(r.text(c, "controller", "step_table"), r.file());
-    if (!fs::exists(table)) r.fail(c["step_table"], "controller.step_table", "no such file: " + table);
-    w.plan.table = read_step_table(table);
-    w.plan.limits.vx_max = std::min(w.plan.limits.vx_max, fastest_feasible_speed(w.plan.table));
+    if (fs::exists(table)) {
+      w.plan.table = read_step_table(table);
+      w.plan.limits.vx_max = std::min(w.plan.limits.vx_max, fastest_feasible_speed(w.plan.table));
+    } else if (missing == MissingStepTable::Error) {
+      r.fail(c["step_table"], "controller.step_table", "no such file: " + table + " (make it: biped tables --robot NAME)");
+    }
   }
   read_section(r, r.mapping(c, "controller", "limits"), command_limits_section(w.plan.limits));
   if (c["model"]) {
@@ -445,7 +449,7 @@ void read_model_map(const YamlReader& r, const YAML::Node& n, ModelMap& map) {
   }
 }
 
-void read_robot_file(const std::string& file, RunConfig& config) {
+void read_robot_file(const std::string& file, RunConfig& config, MissingStepTable missing) {
   const YAML::Node root = load_yaml_file(file);
   const YamlReader r(file);
   r.expect_keys(root, "",
@@ -468,7 +472,7 @@ void read_robot_file(const std::string& file, RunConfig& config) {
 
   read_sensor_settings(r, r.mapping(root, "", "sensors"), false, config.sim);
   read_section(r, r.mapping(root, "", "sensor_noise"), sensor_noise_section(config.sim.noise_levels));
-  read_controller(r, r.mapping(root, "", "controller"), config.controller);
+  read_controller(r, r.mapping(root, "", "controller"), config.controller, missing);
 }
 
 }  // namespace
@@ -500,7 +504,7 @@ std::vector<ParameterDoc> parameter_reference() {
                             step_adaptation_section(w.step_adaptation), calibration_section(w.calibration)});
 }
 
-RunConfig make_run_config(const Scenario& s) {
+RunConfig make_run_config(const Scenario& s, MissingStepTable missing) {
   RunConfig config;
   const YamlReader r(s.file);
   const bool is_mjcf = s.robot.size() > 4 && s.robot.substr(s.robot.size() - 4) == ".xml";
@@ -520,7 +524,7 @@ RunConfig make_run_config(const Scenario& s) {
     }
     config.robot = s.robot;
     config.robot_file = file.string();
-    read_robot_file(config.robot_file, config);
+    read_robot_file(config.robot_file, config, missing);
   }
   read_simulation(r, s.simulation, config.sim);
   read_controller(r, s.controller, config.controller);
