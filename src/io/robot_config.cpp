@@ -340,7 +340,8 @@ void read_stabilization(const YamlReader& r, const YAML::Node& n, StabilizerPara
   }
 }
 
-void read_controller(const YamlReader& r, const YAML::Node& c, ControllerConfig& p) {
+void read_controller(const YamlReader& r, const YAML::Node& c, ControllerConfig& p,
+                     MissingStepTable missing = MissingStepTable::Error) {
   read_section(r, c, controller_section(p));
   p.type = r.text_or(c, "controller", "type", p.type);
   if (p.type != "walking" && p.type != "standing" && p.type != "weight_shift") {
@@ -354,9 +355,12 @@ void read_controller(const YamlReader& r, const YAML::Node& c, ControllerConfig&
   // Before the limits: a scenario's limits.vx_max may still go beyond the table.
   if (c["step_table"]) {
     const std::string table = resolve(r.text(c, "controller", "step_table"), r.file());
-    if (!fs::exists(table)) r.fail(c["step_table"], "controller.step_table", "no such file: " + table);
-    w.plan.table = read_step_table(table);
-    w.plan.limits.vx_max = std::min(w.plan.limits.vx_max, fastest_feasible_speed(w.plan.table));
+    if (fs::exists(table)) {
+      w.plan.table = read_step_table(table);
+      w.plan.limits.vx_max = std::min(w.plan.limits.vx_max, fastest_feasible_speed(w.plan.table));
+    } else if (missing == MissingStepTable::Error) {
+      r.fail(c["step_table"], "controller.step_table", "no such file: " + table + " (make it: biped tables --robot NAME)");
+    }
   }
   read_section(r, r.mapping(c, "controller", "limits"), command_limits_section(w.plan.limits));
   if (c["model"]) {
@@ -369,6 +373,80 @@ void read_controller(const YamlReader& r, const YAML::Node& c, ControllerConfig&
   read_section(r, r.mapping(c, "controller", "terrain_adaptation"), terrain_adaptation_section(w.terrain));
   read_section(r, r.mapping(c, "controller", "step_adaptation"), step_adaptation_section(w.step_adaptation));
   read_section(r, r.mapping(c, "controller", "calibration"), calibration_section(w.calibration));
+}
+
+std::vector<double> read_interval(const YamlReader& r, const YAML::Node& map, const std::string& where, const char* key) {
+  const Eigen::VectorXd v = r.numbers(map, where, key, 2);
+  if (!(v[0] < v[1])) r.fail(map[key], YamlReader::join(where, key), "must be [min, max] with min < max");
+  return {v[0], v[1]};
+}
+
+// "none" names a part the model does not have.
+std::string optional_name(const std::string& name) { return name == "none" ? "" : name; }
+
+// `model_map:` the names of the robot's parts in its MJCF file (model/model_map.hpp); keys left
+// out keep the naming contract of models/README.md.
+void read_model_map(const YamlReader& r, const YAML::Node& n, ModelMap& map) {
+  if (!n.IsDefined() || n.IsNull()) return;
+  const std::string where = "model_map";
+  r.expect_keys(n, where, {"root_body", "upper_body", "imu", "sole_suffix", "legs", "arms", "stand_keyframe",
+                           "stand_pose_deg", "torque_limits", "passive_joints", "locked_joints"});
+  map.root_body = r.text_or(n, where, "root_body", map.root_body);
+  map.upper_body = r.text_or(n, where, "upper_body", map.upper_body);
+  map.sole_suffix = r.text_or(n, where, "sole_suffix", map.sole_suffix);
+  map.stand_keyframe = r.text_or(n, where, "stand_keyframe", map.stand_keyframe);
+  const YAML::Node imu = r.mapping(n, where, "imu");
+  r.expect_keys(imu, "model_map.imu", {"site", "orientation", "gyro", "accelerometer"});
+  map.imu_site = r.text_or(imu, "model_map.imu", "site", map.imu_site);
+  map.imu_orientation = optional_name(r.text_or(imu, "model_map.imu", "orientation", map.imu_orientation));
+  map.imu_gyro = r.text_or(imu, "model_map.imu", "gyro", map.imu_gyro);
+  map.imu_accelerometer = r.text_or(imu, "model_map.imu", "accelerometer", map.imu_accelerometer);
+  const YAML::Node legs = r.mapping(n, where, "legs");
+  const YAML::Node arms = r.mapping(n, where, "arms");
+  r.expect_keys(legs, "model_map.legs", {"left", "right"});
+  r.expect_keys(arms, "model_map.arms", {"left", "right"});
+  for (Side side : kSides) {
+    LegMap& leg = map.legs[index_of(side)];
+    const std::string at = std::string("model_map.legs.") + name_of(side);
+    const YAML::Node l = r.mapping(legs, "model_map.legs", name_of(side));
+    r.expect_keys(l, at, {"root_joint", "toe_joint", "foot_body", "ft_site", "ft_force", "ft_torque", "sole"});
+    leg.root_joint = r.text_or(l, at, "root_joint", leg.root_joint);
+    leg.toe_joint = optional_name(r.text_or(l, at, "toe_joint", leg.toe_joint));
+    leg.foot_body = r.text_or(l, at, "foot_body", leg.foot_body);
+    leg.ft_site = r.text_or(l, at, "ft_site", leg.ft_site);
+    leg.ft_force = r.text_or(l, at, "ft_force", leg.ft_force);
+    leg.ft_torque = r.text_or(l, at, "ft_torque", leg.ft_torque);
+    leg.arm_root_joint = r.text_or(arms, "model_map.arms", name_of(side), leg.arm_root_joint);
+    if (const YAML::Node sole = r.mapping(l, at, "sole"); sole.IsMap()) {
+      const std::string s = at + ".sole";
+      r.expect_keys(sole, s, {"x", "y", "z"});
+      const std::vector<double> x = read_interval(r, sole, s, "x");
+      const std::vector<double> y = read_interval(r, sole, s, "y");
+      const double z = r.number(sole, s, "z");
+      if (z >= 0.0) r.fail(sole["z"], s + ".z", "the sole must be below the F/T sensor (z < 0)");
+      if (x[0] >= 0.0 || x[1] <= 0.0 || y[0] >= 0.0 || y[1] <= 0.0) {
+        r.fail(sole, s, "the sole rectangle must lie around the point below the F/T sensor");
+      }
+      leg.sole = SoleRectangle{x[0], x[1], y[0], y[1], z};
+    }
+  }
+  const YAML::Node pose = r.mapping(n, where, "stand_pose_deg");
+  for (const auto& entry : pose) {
+    const std::string joint = entry.first.Scalar();
+    map.stand_pose[joint] = r.number(pose, "model_map.stand_pose_deg", joint.c_str()) * M_PI / 180.0;
+  }
+  const YAML::Node limits = r.mapping(n, where, "torque_limits");
+  for (const auto& entry : limits) {
+    const std::string joint = entry.first.Scalar();
+    map.torque_limits[joint] = r.positive_or(limits, "model_map.torque_limits", joint.c_str(), 0.0);
+  }
+  for (const char* key : {"passive_joints", "locked_joints"}) {
+    std::vector<std::string>& list = std::string(key) == "passive_joints" ? map.passive_joints : map.locked_joints;
+    for (const auto& joint : r.sequence(n, where, key)) {
+      if (!joint.IsScalar()) r.fail(joint, YamlReader::join(where, key), "must be a list of joint names");
+      list.push_back(joint.Scalar());
+    }
+  }
 }
 
 // `include:` of a robot file: one path or a list, relative to the robot file, each applied over the
@@ -388,15 +466,16 @@ void read_includes(const YamlReader& r, const YAML::Node& root, RunConfig& confi
   }
 }
 
-void read_robot_file(const std::string& file, RunConfig& config) {
+void read_robot_file(const std::string& file, RunConfig& config, MissingStepTable missing) {
   const YAML::Node root = load_yaml_file(file);
   const YamlReader r(file);
-  r.expect_keys(root, "",
-                {"model", "include", "simulation", "drives", "encoders", "sensors", "sensor_noise", "controller"});
+  r.expect_keys(root, "", {"model", "model_map", "include", "simulation", "drives", "encoders", "sensors",
+                           "sensor_noise", "controller"});
   config.sim.world.robot_mjcf = resolve(r.text(root, "", "model"), file);
   if (!fs::exists(config.sim.world.robot_mjcf)) {
     r.fail(root["model"], "model", "no such file: " + config.sim.world.robot_mjcf);
   }
+  read_model_map(r, r.mapping(root, "", "model_map"), config.sim.world.model_map);
   read_simulation(r, r.mapping(root, "", "simulation"), config.sim);
   read_section(r, r.mapping(root, "", "drives"), drives_section(config.sim.drives));
 
@@ -410,7 +489,7 @@ void read_robot_file(const std::string& file, RunConfig& config) {
 
   read_sensor_settings(r, r.mapping(root, "", "sensors"), false, config.sim);
   read_section(r, r.mapping(root, "", "sensor_noise"), sensor_noise_section(config.sim.noise_levels));
-  read_controller(r, r.mapping(root, "", "controller"), config.controller);
+  read_controller(r, r.mapping(root, "", "controller"), config.controller, missing);
   read_includes(r, root, config);
 }
 
@@ -452,7 +531,7 @@ std::vector<ParameterDoc> parameter_reference() {
                             step_adaptation_section(w.step_adaptation), calibration_section(w.calibration)});
 }
 
-RunConfig make_run_config(const Scenario& s) {
+RunConfig make_run_config(const Scenario& s, MissingStepTable missing) {
   RunConfig config;
   const YamlReader r(s.file);
   const bool is_mjcf = s.robot.size() > 4 && s.robot.substr(s.robot.size() - 4) == ".xml";
@@ -472,7 +551,7 @@ RunConfig make_run_config(const Scenario& s) {
     }
     config.robot = s.robot;
     config.robot_file = file.string();
-    read_robot_file(config.robot_file, config);
+    read_robot_file(config.robot_file, config, missing);
   }
   read_simulation(r, s.simulation, config.sim);
   read_controller(r, s.controller, config.controller);

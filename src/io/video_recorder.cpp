@@ -93,7 +93,8 @@ struct VideoRecorder::Gl {
     camera.azimuth = kCameraAzimuthDeg;
     camera.elevation = kCameraElevationDeg;
     camera.distance = kCameraDistance;
-    tracked_body = std::max(0, mj_name2id(model, mjOBJ_BODY, "upper_body"));
+    const int upper_body = mj_name2id(model, mjOBJ_BODY, "upper_body");
+    tracked_body = upper_body >= 0 ? upper_body : 1;  // else the floating base
     bottom_up.resize(static_cast<std::size_t>(3 * o.width * o.height));
   }
 

@@ -25,7 +25,8 @@ LegMassSplit leg_mass_split(const RobotModel& model) {
   for (Side side : kSides) {
     const int joint_index = model.leg_root_joint(side);
     if (joint_index < 0) {
-      throw ModelError(model.path() + ": no joint '" + std::string(name_of(side)) + "_hip_yaw' (root of the leg)");
+      throw ModelError(model.path() + ": no joint '" + model.map().legs[index_of(side)].root_joint +
+                       "' (root of the " + name_of(side) + " leg)");
     }
     const int joint = model.joints()[joint_index].mj_joint;
     const int leg = m->jnt_bodyid[joint];

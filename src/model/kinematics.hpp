@@ -25,7 +25,7 @@ struct LegMassSplit {
   double moving_height = 0.0;   // [m] Σ m r (z − z_ankle) / Σ m r: its height above the ankles
   double ankle_height = 0.0;    // [m] ankle above the sole plane (mean of both feet)
 };
-// Throws ModelError when a leg has no root joint ("<side>_hip_yaw").
+// Throws ModelError when a leg has no root joint (ModelMap).
 LegMassSplit leg_mass_split(const RobotModel& model);
 
 }  // namespace biped

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 
 namespace biped {
 namespace {
@@ -110,29 +111,79 @@ void measure_sole(const mjModel* m, mjData* d, const std::vector<JointInfo>& joi
   }
 }
 
+
+// A sole given as data (ModelMap): one segment rigid with the sensor.
+void sole_from_rectangle(const SoleRectangle& r, FootInfo& foot) {
+  SoleSegment s;
+  s.x_min = r.x_min;
+  s.x_max = r.x_max;
+  s.y_min = r.y_min;
+  s.y_max = r.y_max;
+  s.z = r.z;
+  foot.segments[0] = s;
+  foot.num_segments = 1;
+  foot.sole_x_min = r.x_min;
+  foot.sole_x_max = r.x_max;
+  foot.sole_y_min = r.y_min;
+  foot.sole_y_max = r.y_max;
+  foot.sole_z = r.z;
+}
+
+// The standing configuration from a pose given as data: the joints as given (others at their
+// qpos0), the base at its qpos0 pose lowered or raised until the lowest sole corner is at z = 0.
+Eigen::VectorXd stand_from_pose(const mjModel* m, mjData* d, const std::map<std::string, double>& pose,
+                                const std::array<FootInfo, 2>& feet, const std::string& path) {
+  Eigen::VectorXd qpos = Eigen::Map<const Eigen::VectorXd>(m->qpos0, m->nq);
+  for (const auto& [name, angle] : pose) {
+    const int j = mj_name2id(m, mjOBJ_JOINT, name.c_str());
+    if (j < 0) throw ModelError(path + ": the stand pose names a joint '" + name + "' the model does not have");
+    qpos[m->jnt_qposadr[j]] = angle;
+  }
+  Eigen::Map<Eigen::VectorXd>(d->qpos, m->nq) = qpos;
+  mj_kinematics(m, d);
+  double lowest = std::numeric_limits<double>::infinity();
+  for (const FootInfo& foot : feet) {
+    const Eigen::Vector3d site_pos(d->site_xpos + 3 * foot.sensor_site);
+    const Eigen::Matrix3d site_rot =
+        Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(d->site_xmat + 9 * foot.sensor_site);
+    for (double x : {foot.sole_x_min, foot.sole_x_max}) {
+      for (double y : {foot.sole_y_min, foot.sole_y_max}) {
+        lowest = std::min(lowest, (site_pos + site_rot * Eigen::Vector3d(x, y, foot.sole_z)).z());
+      }
+    }
+  }
+  qpos[2] -= lowest;
+  return qpos;
+}
+
 }  // namespace
 
-RobotModel RobotModel::load(const std::string& mjcf_path, double software_limit_margin_rad) {
+RobotModel RobotModel::load(const std::string& mjcf_path, double software_limit_margin_rad, const ModelMap& map) {
   char error[1000] = "";
   mjModel* raw = mj_loadXML(mjcf_path.c_str(), nullptr, error, sizeof(error));
   if (!raw) throw ModelError(mjcf_path + ": cannot load model: " + error);
-  return adopt(raw, mjcf_path, software_limit_margin_rad);
+  return adopt(raw, mjcf_path, software_limit_margin_rad, map);
 }
 
-RobotModel RobotModel::adopt(mjModel* compiled, const std::string& mjcf_path, double software_limit_margin_rad) {
+RobotModel RobotModel::adopt(mjModel* compiled, const std::string& mjcf_path, double software_limit_margin_rad,
+                             const ModelMap& map) {
   RobotModel model;
   model.model_.reset(compiled);
   model.path_ = mjcf_path;
+  model.map_ = map;
   const mjModel* m = compiled;
   model.name_ = m->names;  // the model name comes first in the names buffer
 
   if (m->njnt < 1 || m->jnt_type[0] != mjJNT_FREE || m->jnt_bodyid[0] != 1) {
     throw ModelError(mjcf_path + ": the first joint must be the free joint of the root body");
   }
-  model.pelvis_body_ = require_id(m, mjOBJ_BODY, "pelvis", mjcf_path, "body");
-  if (model.pelvis_body_ != 1) throw ModelError(mjcf_path + ": the root body must be 'pelvis'");
-  model.upper_body_ = require_id(m, mjOBJ_BODY, "upper_body", mjcf_path, "body");
-  model.imu_site_ = require_id(m, mjOBJ_SITE, "imu", mjcf_path, "site");
+  model.pelvis_body_ = require_id(m, mjOBJ_BODY, map.root_body, mjcf_path, "body");
+  if (model.pelvis_body_ != 1) throw ModelError(mjcf_path + ": the root body must be '" + map.root_body + "'");
+  model.upper_body_ = require_id(m, mjOBJ_BODY, map.upper_body, mjcf_path, "body");
+  model.imu_site_ = require_id(m, mjOBJ_SITE, map.imu_site, mjcf_path, "site");
+  if (m->site_bodyid[model.imu_site_] != model.upper_body_) {
+    throw ModelError(mjcf_path + ": site '" + map.imu_site + "' must be in body '" + map.upper_body + "'");
+  }
 
   for (int j = 1; j < m->njnt; ++j) {
     if (m->jnt_type[j] != mjJNT_HINGE) {
@@ -161,53 +212,89 @@ RobotModel RobotModel::adopt(mjModel* compiled, const std::string& mjcf_path, do
                                 : 0.0;
       }
     }
+    if (const auto limit = map.torque_limits.find(info.name); limit != map.torque_limits.end()) {
+      info.torque_limit = limit->second;
+    }
+    info.passive =
+        std::find(map.passive_joints.begin(), map.passive_joints.end(), info.name) != map.passive_joints.end();
+    info.locked = std::find(map.locked_joints.begin(), map.locked_joints.end(), info.name) != map.locked_joints.end();
     model.joints_.push_back(std::move(info));
   }
+  for (const auto& [name, limit] : map.torque_limits) {
+    if (model.joint_index(name) < 0) {
+      throw ModelError(mjcf_path + ": a torque limit is given for a joint '" + name + "' the model does not have");
+    }
+  }
+  for (const std::string& name : map.passive_joints) {
+    if (model.joint_index(name) < 0) {
+      throw ModelError(mjcf_path + ": the passive joint '" + name + "' is not a joint of the model");
+    }
+  }
+  for (const std::string& name : map.locked_joints) {
+    if (model.joint_index(name) < 0) {
+      throw ModelError(mjcf_path + ": the locked joint '" + name + "' is not a joint of the model");
+    }
+  }
   for (Side side : kSides) {
-    model.leg_root_joint_[index_of(side)] = model.joint_index(std::string(name_of(side)) + "_hip_yaw");
-    model.arm_root_joint_[index_of(side)] = model.joint_index(std::string(name_of(side)) + "_shoulder_pitch");
+    const LegMap& leg = map.legs[index_of(side)];
+    model.leg_root_joint_[index_of(side)] = model.joint_index(leg.root_joint);
+    model.arm_root_joint_[index_of(side)] = model.joint_index(leg.arm_root_joint);
+    model.toe_joint_[index_of(side)] = leg.toe_joint.empty() ? -1 : model.joint_index(leg.toe_joint);
   }
 
   for (Side side : kSides) {
     FootInfo& foot = model.feet_[index_of(side)];
-    const std::string prefix = name_of(side);
-    foot.body = require_id(m, mjOBJ_BODY, prefix + "_foot", mjcf_path, "body");
-    foot.sensor_site = require_id(m, mjOBJ_SITE, prefix + "_ft", mjcf_path, "site");
+    const LegMap& leg = map.legs[index_of(side)];
+    foot.body = require_id(m, mjOBJ_BODY, leg.foot_body, mjcf_path, "body");
+    foot.sensor_site = require_id(m, mjOBJ_SITE, leg.ft_site, mjcf_path, "site");
     if (m->site_bodyid[foot.sensor_site] != foot.body) {
-      throw ModelError(mjcf_path + ": site '" + prefix + "_ft' must be in body '" + prefix + "_foot'");
+      throw ModelError(mjcf_path + ": site '" + leg.ft_site + "' must be in body '" + leg.foot_body + "'");
     }
+    foot.force_sensor = require_id(m, mjOBJ_SENSOR, leg.ft_force, mjcf_path, "sensor");
+    foot.torque_sensor = require_id(m, mjOBJ_SENSOR, leg.ft_torque, mjcf_path, "sensor");
     foot.sensor_position = Eigen::Vector3d(m->site_pos + 3 * foot.sensor_site);
     for (int b = 1; b < m->nbody; ++b) {
       if (!is_in_subtree(m, b, foot.body)) continue;
       foot.bodies_below_sensor.push_back(b);
       foot.mass_below_sensor += m->body_mass[b];
     }
+    if (leg.sole) continue;
     for (int g = 0; g < m->ngeom; ++g) {
       const char* geom_name = mj_id2name(m, mjOBJ_GEOM, g);
-      if (geom_name && ends_with(geom_name, "_sole") && is_in_subtree(m, m->geom_bodyid[g], foot.body)) {
+      if (geom_name && ends_with(geom_name, map.sole_suffix) && is_in_subtree(m, m->geom_bodyid[g], foot.body)) {
         foot.sole_geoms.push_back(g);
       }
     }
   }
-  for (const char* sensor : {"left_ft_force", "left_ft_torque", "right_ft_force", "right_ft_torque",
-                             "imu_quat", "imu_gyro", "imu_accel"}) {
-    require_id(m, mjOBJ_SENSOR, sensor, mjcf_path, "sensor");
-  }
+  model.imu_sensors_[0] =
+      map.imu_orientation.empty() ? -1 : require_id(m, mjOBJ_SENSOR, map.imu_orientation, mjcf_path, "sensor");
+  model.imu_sensors_[1] = require_id(m, mjOBJ_SENSOR, map.imu_gyro, mjcf_path, "sensor");
+  model.imu_sensors_[2] = require_id(m, mjOBJ_SENSOR, map.imu_accelerometer, mjcf_path, "sensor");
 
   for (int b = 1; b < m->nbody; ++b) model.total_mass_ += m->body_mass[b];
   model.tree_ = make_body_tree(m, mjcf_path.c_str());
 
-  const int key = require_id(m, mjOBJ_KEY, "stand", mjcf_path, "keyframe");
-  model.stand_qpos_ = Eigen::Map<const Eigen::VectorXd>(m->key_qpos + key * m->nq, m->nq);
-  model.stand_pose_.resize(model.num_joints());
-  for (int i = 0; i < model.num_joints(); ++i) {
-    model.stand_pose_[i] = model.stand_qpos_[model.joints_[i].qpos_adr];
-  }
-
   RobotData data(model);
   mj_kinematics(m, data.mj());
   for (Side side : kSides) {
-    measure_sole(m, data.mj(), model.joints_, model.feet_[index_of(side)], mjcf_path, name_of(side));
+    FootInfo& foot = model.feet_[index_of(side)];
+    const LegMap& leg = map.legs[index_of(side)];
+    if (leg.sole) {
+      sole_from_rectangle(*leg.sole, foot);
+    } else {
+      measure_sole(m, data.mj(), model.joints_, foot, mjcf_path, name_of(side));
+    }
+  }
+
+  if (!map.stand_pose.empty()) {
+    model.stand_qpos_ = stand_from_pose(m, data.mj(), map.stand_pose, model.feet_, mjcf_path);
+  } else {
+    const int key = require_id(m, mjOBJ_KEY, map.stand_keyframe, mjcf_path, "keyframe");
+    model.stand_qpos_ = Eigen::Map<const Eigen::VectorXd>(m->key_qpos + key * m->nq, m->nq);
+  }
+  model.stand_pose_.resize(model.num_joints());
+  for (int i = 0; i < model.num_joints(); ++i) {
+    model.stand_pose_[i] = model.stand_qpos_[model.joints_[i].qpos_adr];
   }
   return model;
 }
@@ -216,6 +303,14 @@ int RobotModel::joint_index(std::string_view joint_name) const {
   for (int i = 0; i < num_joints(); ++i) {
     if (joints_[i].name == joint_name) return i;
   }
+  return -1;
+}
+
+int RobotModel::body_named(const std::string& name) const {
+  const int id = mj_name2id(model_.get(), mjOBJ_BODY, name.c_str());
+  if (id >= 0) return id;
+  if (name == "upper_body") return upper_body_;
+  if (name == "pelvis") return pelvis_body_;
   return -1;
 }
 

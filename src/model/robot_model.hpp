@@ -15,6 +15,7 @@
 
 #include "math/side.hpp"
 #include "model/body_tree.hpp"
+#include "model/model_map.hpp"
 
 namespace biped {
 
@@ -33,7 +34,9 @@ struct JointInfo {
   double upper = 0.0;
   double soft_lower = 0.0;  // software limits: hard limits minus a margin
   double soft_upper = 0.0;
-  double torque_limit = 0.0;  // [N·m] from the actuator's ctrlrange (0: no actuator)
+  double torque_limit = 0.0;  // [N·m] the actuator's ctrlrange, else ModelMap::torque_limits (0: none)
+  bool passive = false;       // ModelMap::passive_joints: no drive, kept out of the controller's tasks
+  bool locked = false;        // ModelMap::locked_joints: driven, held at the stand pose, out of the tasks
 };
 
 // A rigid part of a sole: the rectangle of the box geoms "*_sole" of one body, in the sensor frame
@@ -56,7 +59,9 @@ struct FootInfo {
   int sensor_site = -1;  // F/T sensor frame
   Eigen::Vector3d sensor_position = Eigen::Vector3d::Zero();  // the sensor frame's origin in `body`'s frame
   std::vector<int> bodies_below_sensor;
-  std::vector<int> sole_geoms;
+  std::vector<int> sole_geoms;  // box geoms of the sole (empty: the sole is ModelMap data)
+  int force_sensor = -1;        // MuJoCo sensor ids of the F/T sensor's force and torque
+  int torque_sensor = -1;
   double mass_below_sensor = 0.0;
   double sole_x_min = 0.0, sole_x_max = 0.0;  // sole rectangle in the sensor frame [m]
   double sole_y_min = 0.0, sole_y_max = 0.0;
@@ -68,11 +73,12 @@ struct FootInfo {
 class RobotModel {
  public:
   // Loads an MJCF file; throws ModelError naming the file when it cannot be loaded or lacks
-  // the bodies, sites and sensors of the naming contract (models/README.md).
-  static RobotModel load(const std::string& mjcf_path, double software_limit_margin_rad);
+  // the bodies, sites and sensors that `map` names (default: the naming contract of models/README.md).
+  static RobotModel load(const std::string& mjcf_path, double software_limit_margin_rad, const ModelMap& map = {});
   // Same checks on an already compiled model, which the RobotModel takes over; `origin` names
   // where it came from in error messages.
-  static RobotModel adopt(mjModel* compiled, const std::string& origin, double software_limit_margin_rad);
+  static RobotModel adopt(mjModel* compiled, const std::string& origin, double software_limit_margin_rad,
+                          const ModelMap& map = {});
 
   // The compiled MuJoCo model: for model/ and sim/ only (control/ and planning/ use the functions
   // of model/, docs/architecture.md).
@@ -89,15 +95,25 @@ class RobotModel {
   const std::vector<JointInfo>& joints() const { return joints_; }
   // Index in joints() of the joint with that name, or -1.
   int joint_index(std::string_view joint_name) const;
-  // The first joint of each leg ("<side>_hip_yaw") and of each arm ("<side>_shoulder_pitch"), as
-  // indices in joints(); -1 where the model has none.
+  // The first joint of each leg and of each arm (ModelMap), and the toe joint, as indices in
+  // joints(); -1 where the model has none.
   int leg_root_joint(Side s) const { return leg_root_joint_[index_of(s)]; }
   int arm_root_joint(Side s) const { return arm_root_joint_[index_of(s)]; }
+  int toe_joint(Side s) const { return toe_joint_[index_of(s)]; }
+  // The names this model was loaded with.
+  const ModelMap& map() const { return map_; }
 
   const FootInfo& foot(Side s) const { return feet_[index_of(s)]; }
   int pelvis_body() const { return pelvis_body_; }
+  // The body of that name, or, for the role names "upper_body" and "pelvis" where the model names
+  // them otherwise (ModelMap), the body in that role; -1 when there is none.
+  int body_named(const std::string& name) const;
   int upper_body() const { return upper_body_; }
   int imu_site() const { return imu_site_; }
+  // MuJoCo sensor ids of the IMU's parts (orientation: -1 when the model has no such sensor).
+  int imu_orientation_sensor() const { return imu_sensors_[0]; }
+  int imu_gyro_sensor() const { return imu_sensors_[1]; }
+  int imu_accelerometer_sensor() const { return imu_sensors_[2]; }
   double total_mass() const { return total_mass_; }
   // Weight carried by the two F/T sensors when standing still [N].
   double weight_above_sensors() const;
@@ -119,6 +135,9 @@ class RobotModel {
   BodyTree tree_;
   std::array<int, 2> leg_root_joint_{-1, -1};
   std::array<int, 2> arm_root_joint_{-1, -1};
+  std::array<int, 2> toe_joint_{-1, -1};
+  std::array<int, 3> imu_sensors_{-1, -1, -1};
+  ModelMap map_;
   int pelvis_body_ = -1;
   int upper_body_ = -1;
   int imu_site_ = -1;

@@ -39,16 +39,21 @@ TaskSpace::TaskSpace(const RobotModel& model) : model_(&model) {
   int arm_dofs = 3;
   for (Side side : kSides) {
     foot_body_[index_of(side)] = model.foot(side).body;
-    const std::string joint = std::string(name_of(side)) + "_shoulder_pitch";
-    const int j = mj_name2id(m, mjOBJ_JOINT, joint.c_str());
-    if (j < 0) throw ModelError(model.path() + ": the model has no joint named '" + joint + "'");
-    arm_body_[index_of(side)] = m->jnt_bodyid[j];
+    const int j = model.arm_root_joint(side);
+    if (j < 0) {
+      throw ModelError(model.path() + ": the model has no joint named '" + model.map().legs[index_of(side)].arm_root_joint +
+                       "' (root of the " + name_of(side) + " arm)");
+    }
+    arm_body_[index_of(side)] = m->jnt_bodyid[model.joints()[j].mj_joint];
     arm_dofs = std::min(arm_dofs, count_dofs_in_subtree(m, arm_body_[index_of(side)]));
   }
   if (arm_dofs < 2) throw ModelError(model.path() + ": each arm needs at least two joints");
   // An arm with fewer than three joints cannot place its CoM in 3D: only x and y are tasks.
   layout_.arm_com_rows = arm_dofs >= 3 ? 3 : 2;
-  layout_.has_toes = model.joint_index("left_toe") >= 0 && model.joint_index("right_toe") >= 0;
+  layout_.has_toes = model.toe_joint(Side::Left) >= 0 && model.toe_joint(Side::Right) >= 0;
+  for (const JointInfo& joint : model.joints()) {
+    if (joint.passive || joint.locked) held_dofs_.push_back(joint.dof_adr);
+  }
 
   static const char* const kXyz[] = {"_x", "_y", "_z"};
   static const char* const kPhi[] = {"_phi_x", "_phi_y", "_phi_z"};
@@ -151,6 +156,10 @@ void evaluate(const TaskSpace& space, const Eigen::VectorXd& qpos, const Eigen::
   const int c = layout.com;
   x.segment<3>(c) = data.com;
   J.middleRows<3>(c) = data.jac_com_;
+
+  // A passive joint has no drive to move it and a locked one stays at the stand pose: no task may
+  // ask for either (the null-space objective keeps them at the pose).
+  for (int dof : space.held_dofs()) J.col(dof).setZero();
 }
 
 void task_error(const Eigen::VectorXd& x_d, const Eigen::VectorXd& x, Eigen::VectorXd& error) {

@@ -33,8 +33,8 @@ struct TaskLayout {
 
 class TaskSpace {
  public:
-  // Throws ModelError when the model lacks the arm joints "<side>_shoulder_pitch" or has more
-  // task rows than generalized velocities.
+  // Throws ModelError when the model lacks the arms' root joints (ModelMap) or has more task rows
+  // than generalized velocities.
   explicit TaskSpace(const RobotModel& model);
 
   const RobotModel& model() const { return *model_; }
@@ -49,6 +49,8 @@ class TaskSpace {
   int arm_body(Side s) const { return arm_body_[index_of(s)]; }  // first body of the arm's subtree
   int upper_body() const { return model_->upper_body(); }
   int root_body() const { return model_->pelvis_body(); }
+  // Velocity addresses of the passive and locked joints, whose Jacobian columns evaluate() zeroes.
+  const std::vector<int>& held_dofs() const { return held_dofs_; }
 
  private:
   const RobotModel* model_;
@@ -56,6 +58,7 @@ class TaskSpace {
   std::array<int, 2> foot_body_{};
   std::array<int, 2> arm_body_{};
   std::vector<std::string> row_names_;
+  std::vector<int> held_dofs_;
 };
 
 // Workspace of evaluate(); everything is sized at construction.

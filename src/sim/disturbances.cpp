@@ -32,7 +32,7 @@ void GaitEvents::update(double t, const std::array<double, 2>& normal_force) {
 PushSchedule::PushSchedule(const RobotModel& plant, std::vector<Push> pushes)
     : plant_(plant), pushes_(std::move(pushes)) {
   for (const Push& push : pushes_) {
-    const int body = mj_name2id(plant_.mj(), mjOBJ_BODY, push.body.c_str());
+    const int body = plant_.body_named(push.body);
     if (body < 0) throw ModelError(plant_.path() + ": push on unknown body '" + push.body + "'");
     body_.push_back(body);
   }

@@ -41,7 +41,8 @@ JointDrives::JointDrives(const RobotModel& plant, const DriveParams& params)
     for (int a = 0; a < m->nu; ++a) {
       if (m->actuator_trntype[a] == mjTRN_JOINT && m->actuator_trnid[2 * a] == j.mj_joint) actuator_[i] = a;
     }
-    if (actuator_[i] < 0) throw ModelError(plant.path() + ": joint '" + j.name + "' has no motor actuator");
+    if (j.passive) actuator_[i] = -1;  // no drive, whatever the model's actuators
+    else if (actuator_[i] < 0) throw ModelError(plant.path() + ": joint '" + j.name + "' has no motor actuator");
   }
 }
 
@@ -69,6 +70,7 @@ void JointDrives::set_targets(const Eigen::VectorXd& position, double control_pe
 void JointDrives::apply(const mjModel* m, mjData* d, double dt) {
   const auto& joints = plant_.joints();
   for (int i = 0; i < static_cast<int>(joints.size()); ++i) {
+    if (actuator_[i] < 0) continue;
     const double q = d->qpos[joints[i].qpos_adr];
     const double qd = d->qvel[joints[i].dof_adr];
     const double velocity_error = position_gain_ * (target_[i] - q) + target_rate_[i] - qd;

@@ -9,11 +9,6 @@
 namespace biped {
 namespace {
 
-int sensor_adr(const RobotModel& plant, const char* name) {
-  const mjModel* m = plant.mj();
-  return m->sensor_adr[mj_name2id(m, mjOBJ_SENSOR, name)];
-}
-
 constexpr double kGravity = 9.81;  // [m/s²] only its direction matters here
 
 Eigen::Vector3d vec3(const double* p) { return Eigen::Vector3d(p[0], p[1], p[2]); }
@@ -46,14 +41,14 @@ SensorEmulation::SensorEmulation(const RobotModel& plant, std::vector<int> plant
       delay_line_(params_.delay_cycles + 1, SensorData(static_cast<int>(plant_joint_of_.size()))),
       last_delivered_(static_cast<int>(plant_joint_of_.size())),
       fault_fired_(params_.faults.size(), 0) {
+  const mjModel* m = plant.mj();
   for (Side side : kSides) {
-    const std::string prefix = name_of(side);
-    adr_force_[index_of(side)] = sensor_adr(plant, (prefix + "_ft_force").c_str());
-    adr_torque_[index_of(side)] = sensor_adr(plant, (prefix + "_ft_torque").c_str());
+    adr_force_[index_of(side)] = m->sensor_adr[plant.foot(side).force_sensor];
+    adr_torque_[index_of(side)] = m->sensor_adr[plant.foot(side).torque_sensor];
   }
-  adr_quat_ = sensor_adr(plant, "imu_quat");
-  adr_gyro_ = sensor_adr(plant, "imu_gyro");
-  adr_accel_ = sensor_adr(plant, "imu_accel");
+  adr_quat_ = plant.imu_orientation_sensor() < 0 ? -1 : m->sensor_adr[plant.imu_orientation_sensor()];
+  adr_gyro_ = m->sensor_adr[plant.imu_gyro_sensor()];
+  adr_accel_ = m->sensor_adr[plant.imu_accelerometer_sensor()];
   for (int bits : params_.encoder_bits) resolution_.push_back(2.0 * M_PI / std::ldexp(1.0, bits));
 
   auto controller_joint = [this](const std::string& name) {
@@ -142,7 +137,13 @@ void SensorEmulation::read_clean(const mjData* d, double t) {
     clean_.joint_position[i] = quantized(i, d->qpos[plant_.joints()[plant_joint_of_[i]].qpos_adr]);
   }
   const double* s = d->sensordata;
-  clean_.imu_orientation = math::quat_from_mujoco(s + adr_quat_).normalized();
+  if (adr_quat_ >= 0) {
+    clean_.imu_orientation = math::quat_from_mujoco(s + adr_quat_).normalized();
+  } else {  // no orientation sensor in the model: the IMU site's frame
+    mjtNum quat[4];
+    mju_mat2Quat(quat, d->site_xmat + 9 * plant_.imu_site());
+    clean_.imu_orientation = math::quat_from_mujoco(quat).normalized();
+  }
   clean_.imu_angular_rate = vec3(s + adr_gyro_);
   clean_.imu_acceleration = vec3(s + adr_accel_);
   // MuJoCo reports the wrench the parent (ankle side) exerts on the child (sole side); the

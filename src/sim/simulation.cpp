@@ -7,12 +7,23 @@
 namespace biped {
 namespace {
 
-// The soles touch the ground through SoleContact, not through MuJoCo's contacts.
+// The soles touch the ground through SoleContact, not through MuJoCo's contacts. Where a sole is
+// given as data, not as box geoms, the foot's own collision geoms stand for it and are switched off.
 RobotModel build_plant(const SimulationParams& p) {
-  RobotModel plant = RobotModel::adopt(build_world(p.world), p.world.robot_mjcf, p.software_limit_margin_rad);
+  RobotModel plant =
+      RobotModel::adopt(build_world(p.world), p.world.robot_mjcf, p.software_limit_margin_rad, p.world.model_map);
   mjModel* m = const_cast<mjModel*>(plant.mj());
   for (Side side : kSides) {
-    for (int g : plant.foot(side).sole_geoms) m->geom_contype[g] = m->geom_conaffinity[g] = 0;
+    const FootInfo& foot = plant.foot(side);
+    for (int g : foot.sole_geoms) m->geom_contype[g] = m->geom_conaffinity[g] = 0;
+    if (!foot.sole_geoms.empty()) continue;
+    for (int g = 0; g < m->ngeom; ++g) {
+      const int body = m->geom_bodyid[g];
+      if (std::find(foot.bodies_below_sensor.begin(), foot.bodies_below_sensor.end(), body) !=
+          foot.bodies_below_sensor.end()) {
+        m->geom_contype[g] = m->geom_conaffinity[g] = 0;
+      }
+    }
   }
   return plant;
 }
@@ -45,20 +56,16 @@ SensorEmulationParams sensor_params(const SimulationParams& p, const RobotModel&
 }
 
 // Lowest point of the soles above the ground, with the robot at its current qpos.
-double sole_clearance(const RobotModel& plant, const mjData* d, const Terrain& terrain) {
-  const mjModel* m = plant.mj();
+double sole_clearance(const std::vector<SoleFace>& faces, const mjData* d, const Terrain& terrain) {
   double clearance = std::numeric_limits<double>::infinity();
-  for (Side side : kSides) {
-    for (int g : plant.foot(side).sole_geoms) {
-      const Eigen::Vector3d half(m->geom_size + 3 * g);
-      const Eigen::Vector3d center(d->geom_xpos + 3 * g);
-      const Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> rot(d->geom_xmat + 9 * g);
-      for (int c = 0; c < 8; ++c) {
-        const Eigen::Vector3d corner =
-            center + rot * Eigen::Vector3d((c & 1 ? 1 : -1) * half.x(), (c & 2 ? 1 : -1) * half.y(),
-                                           (c & 4 ? 1 : -1) * half.z());
-        clearance = std::min(clearance, corner.z() - terrain.height(corner.head<2>()));
-      }
+  for (const SoleFace& f : faces) {
+    const Eigen::Vector3d origin(d->xpos + 3 * f.body);
+    const Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> rot(d->xmat + 9 * f.body);
+    for (int c = 0; c < 4; ++c) {
+      const Eigen::Vector3d local =
+          f.center + (c & 1 ? 1 : -1) * f.half_u * f.axes.col(0) + (c & 2 ? 1 : -1) * f.half_v * f.axes.col(1);
+      const Eigen::Vector3d corner = origin + rot * local;
+      clearance = std::min(clearance, corner.z() - terrain.height(corner.head<2>()));
     }
   }
   return clearance;
@@ -99,7 +106,7 @@ void Simulation::reset() {
   mj_kinematics(m, d);
   // Start in static equilibrium: the soles sunk by the deflection that carries the weight.
   const double sink = plant_.total_mass() * std::abs(m->opt.gravity[2]) / (2.0 * params_.sole_contact.stiffness_per_foot);
-  d->qpos[2] -= sole_clearance(plant_, d, terrain_) + sink;
+  d->qpos[2] -= sole_clearance(sole_contact_.faces(), d, terrain_) + sink;
   sole_contact_.reset();
   sensors_.reset();
   mj_forward(m, d);

@@ -85,7 +85,21 @@ std::vector<SoleFace> sole_faces(const RobotModel& plant) {
   const mjModel* m = plant.mj();
   std::vector<SoleFace> faces;
   for (Side side : kSides) {
-    for (int g : plant.foot(side).sole_geoms) {
+    const FootInfo& foot = plant.foot(side);
+    if (foot.sole_geoms.empty()) {  // a sole given as data: one rectangle in the sensor frame
+      const SoleSegment& r = foot.segments[0];
+      const Eigen::Matrix3d site = math::quat_from_mujoco(m->site_quat + 4 * foot.sensor_site).toRotationMatrix();
+      SoleFace f;
+      f.body = foot.body;
+      f.side = index_of(side);
+      f.center = foot.sensor_position + site * Eigen::Vector3d(0.5 * (r.x_min + r.x_max), 0.5 * (r.y_min + r.y_max), r.z);
+      f.axes << site.col(0), site.col(1), -site.col(2);
+      f.half_u = 0.5 * (r.x_max - r.x_min);
+      f.half_v = 0.5 * (r.y_max - r.y_min);
+      faces.push_back(f);
+      continue;
+    }
+    for (int g : foot.sole_geoms) {
       SoleFace f;
       f.body = m->geom_bodyid[g];
       f.side = index_of(side);

@@ -49,7 +49,8 @@ struct SoleFace {
   Eigen::Matrix3d axes = Eigen::Matrix3d::Identity();  // columns: the face's u and v axes and its outward normal (body frame)
   double half_u = 0.0, half_v = 0.0;                 // [m]
 };
-// The bottom faces of the model's sole geoms (FootInfo::sole_geoms).
+// The bottom faces of the model's sole geoms (FootInfo::sole_geoms), or the sole rectangle a
+// ModelMap gives in the sensor frame.
 std::vector<SoleFace> sole_faces(const RobotModel& plant);
 
 // Velocity (world frame) of the point p (world) moving with a body: the body frame origin's velocity

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <memory>
 #include <sstream>
@@ -130,8 +131,8 @@ std::string read_text(const std::string& path) {
   return text.str();
 }
 
-void apply_model_error(mjModel* m, const ModelErrorSpec& error) {
-  const int ub = mj_name2id(m, mjOBJ_BODY, "upper_body");
+void apply_model_error(mjModel* m, const ModelErrorSpec& error, const std::string& upper_body) {
+  const int ub = mj_name2id(m, mjOBJ_BODY, upper_body.c_str());
   m->body_mass[ub] *= error.upper_body_mass_scale;
   for (int k = 0; k < 3; ++k) {
     m->body_inertia[3 * ub + k] *= error.upper_body_mass_scale;
@@ -158,10 +159,12 @@ mjModel* build_world(const WorldSpec& spec) {
              "<material name=\"ground\" texture=\"checker\" texrepeat=\"2 2\" texuniform=\"true\"/>\n" +
                  terrain_meshes + "</asset>\n");
 
-  // Compile from memory; the robot file needs no other files (no meshes, no includes).
+  // Compile from memory, under a name in the robot file's directory, so that the paths of its meshes
+  // and includes resolve as they do for the file itself.
   auto vfs = std::make_unique<mjVFS>();
   mj_defaultVFS(vfs.get());
-  const char* vfs_name = "world.xml";
+  const std::string vfs_path = (std::filesystem::path(spec.robot_mjcf).parent_path() / "world.xml").string();
+  const char* vfs_name = vfs_path.c_str();
   if (mj_makeEmptyFileVFS(vfs.get(), vfs_name, static_cast<int>(xml.size())) != 0) {
     throw ModelError(spec.robot_mjcf + ": cannot create the in-memory world file");
   }
@@ -170,9 +173,9 @@ mjModel* build_world(const WorldSpec& spec) {
   mjModel* m = mj_loadXML(vfs_name, vfs.get(), error, sizeof(error));
   mj_deleteVFS(vfs.get());
   if (!m) throw ModelError(spec.robot_mjcf + ": cannot compile the world: " + error);
-  if (mj_name2id(m, mjOBJ_BODY, "upper_body") < 0) {
+  if (mj_name2id(m, mjOBJ_BODY, spec.model_map.upper_body.c_str()) < 0) {
     mj_deleteModel(m);
-    throw ModelError(spec.robot_mjcf + ": the model has no body named 'upper_body'");
+    throw ModelError(spec.robot_mjcf + ": the model has no body named '" + spec.model_map.upper_body + "'");
   }
   m->opt.timestep = spec.timestep;
   // Elliptic friction cones and the Newton solver stopped at a relative improvement of 1e-5: while
@@ -185,7 +188,7 @@ mjModel* build_world(const WorldSpec& spec) {
     m->geom_solref[2 * g] = spec.contact_timeconst;
     m->geom_solref[2 * g + 1] = spec.contact_dampratio;
   }
-  apply_model_error(m, spec.model_error);
+  apply_model_error(m, spec.model_error, spec.model_map.upper_body);
   return m;
 }
 

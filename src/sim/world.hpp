@@ -5,6 +5,8 @@
 
 #include <Eigen/Core>
 #include <string>
+
+#include "model/model_map.hpp"
 #include <vector>
 
 #include "sim/terrain.hpp"
@@ -27,6 +29,7 @@ struct WorldSpec {
   double contact_dampratio = 1.0;
   std::vector<TerrainFeature> terrain;
   ModelErrorSpec model_error;
+  ModelMap model_map;  // names of the robot's parts in robot_mjcf
 };
 
 // Compiles the world; throws ModelError naming the robot file on failure. The caller owns the result

@@ -61,7 +61,8 @@ nlohmann::json commands_beyond_limits(const std::vector<TimedCommand>& commands,
 }  // namespace
 
 RobotModel load_controller_model(const RunConfig& config) {
-  return RobotModel::load(config.controller.model_path, config.controller.software_limit_margin_rad);
+  return RobotModel::load(config.controller.model_path, config.controller.software_limit_margin_rad,
+                          config.sim.world.model_map);
 }
 
 std::unique_ptr<Controller> make_controller(const RunConfig& config, const RobotModel& model) {
@@ -89,7 +90,7 @@ void check_scenario_against_model(const Scenario& s, const RobotModel& model) {
     }
   }
   for (std::size_t i = 0; i < s.pushes.size(); ++i) {
-    if (mj_name2id(model.mj(), mjOBJ_BODY, s.pushes[i].body.c_str()) < 0) {
+    if (model.body_named(s.pushes[i].body) < 0) {
       throw InputError(s.file + ": key 'disturbances." + std::to_string(i) + ".body': unknown body '" +
                        s.pushes[i].body + "'");
     }
