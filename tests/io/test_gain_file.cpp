@@ -54,8 +54,9 @@ TEST(GainFile, OnlyControllerNumbersAndBooleansAreStartingGains) {
   EXPECT_EQ(error_of("controller: {stabilizer: false}\n"), "");
   EXPECT_EQ(error_of("drives: {bandwidth_hz: 18}\n"),
             path + ":1: key 'drives': a starting gain set holds controller keys only");
-  EXPECT_EQ(error_of("controller:\n  step_table: other.csv\n"),
-            path + ":2: key 'controller.step_table': no such file: " + (dir / "other.csv").string());
+  EXPECT_EQ(error_of("controller:\n  step_table: other.csv\n")
+                .find(path + ":2: key 'controller.step_table': no such file: " + (dir / "other.csv").string()),
+            0u);
   EXPECT_NE(error_of("controller:\n  type: standing\n").find(path + ":2: key 'controller.type': a gain file holds numbers"),
             std::string::npos);
   EXPECT_NE(error_of("controller:\n  stabilization: {tilt_gian: 3}\n").find(path + ":2: key 'controller.stabilization.tilt_gian'"),
