@@ -404,7 +404,9 @@ nlohmann::json run_gain_tuning(const TuningOptions& options, const std::string& 
           ? options.campaign
           : (fs::path(data_directory()) / "config" / "campaigns" / (options.robot + "-tune.yaml")).string();
   if (!fs::is_regular_file(campaign_file)) {
-    throw InputError("biped tune: --campaign: no such file '" + campaign_file + "'");
+    throw InputError(options.campaign.empty() ? "biped tune: --campaign: robot '" + options.robot +
+                                                    "' has no training campaign " + campaign_file + " (give --campaign FILE)"
+                                              : "biped tune: --campaign: no such file '" + campaign_file + "'");
   }
 
   // The training campaign as the file gives it, with the training seed.
