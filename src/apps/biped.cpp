@@ -352,7 +352,7 @@ int main(int argc, char** argv) {
   push_map->add_option("--set", map_overrides, "Override a scenario key")->type_name("KEY=VALUE");
 
   biped::TuningOptions tune_options;
-  tune_options.budget = 1000;
+  tune_options.budget = 2448;  // the start and 5 generations of 10 with 48 runs per candidate
   std::string tune_out;
   long tune_seed = 0;
   CLI::App* tune = app.add_subcommand("tune", "Tune the stabilizer's gains by CMA-ES on a training campaign; held-out check; gain file");
@@ -404,7 +404,9 @@ int main(int argc, char** argv) {
     if (*campaign) return campaign_command(campaign_spec, campaign_out, campaign_jobs, campaign_overrides);
     if (*tune) {
       if (tune->count("--seed") > 0) tune_options.seed = static_cast<std::uint64_t>(tune_seed);
-      for (int i = 0; i < argc; ++i) tune_options.command += (i > 0 ? " " : "") + std::string(argv[i]);
+      // As the campaigns' reproduce commands write it: from the repository's root.
+      tune_options.command = "build/biped";
+      for (int i = 1; i < argc; ++i) tune_options.command += " " + std::string(argv[i]);
       return tune_command(tune_options, tune_out);
     }
     if (*push_map) return push_map_command(map_scenario, map_out, map_options, map_jobs, map_overrides);
