@@ -12,6 +12,7 @@
 #include "io/robot_config.hpp"
 #include "io/scenario.hpp"
 #include "io/step_table_file.hpp"
+#include "io/urdf_import.hpp"
 #include "io/video_recorder.hpp"
 #include "io/yaml_reader.hpp"
 #include "io/campaign_spec.hpp"
@@ -262,12 +263,29 @@ int robot_check_command(const std::string& robot_file, double stand_duration) {
                 r.stand.duration, r.stand.fell ? "FELL" : "no fall", r.stand.max_tilt_deg, 1e3 * r.stand.com_drift,
                 r.stand.com_height);
   }
+  for (const std::string& line : r.warnings) std::printf("warning: %s\n", line.c_str());
   for (const std::string& line : r.problems) std::cerr << line << '\n';
   if (!r.problems.empty()) {
     std::fprintf(stderr, "robot check: %zu problem(s)\n", r.problems.size());
     return kExitBadInput;
   }
-  std::printf("robot check: no problems\n");
+  std::printf("robot check: no problems%s\n", r.warnings.empty() ? "" : ", but see the warnings");
+  return 0;
+}
+
+int robot_import_command(const std::string& urdf, const std::string& out, const biped::UrdfImportOptions& options) {
+  const biped::UrdfImport r = biped::import_urdf(urdf, out, options);
+  for (const std::string& note : r.notes) std::fprintf(stderr, "%s\n", note.c_str());
+  std::fprintf(stderr, "MJCF: %s\n", out.c_str());
+  if (options.robot_file.empty()) {
+    std::printf("%s", r.robot_file.c_str());
+    return 0;
+  }
+  biped::AtomicOutputFile file(options.robot_file);
+  file.stream() << r.robot_file;
+  file.commit();
+  std::fprintf(stderr, "robot file: %s (check it: biped robot check %s)\n", options.robot_file.c_str(),
+               options.robot_file.c_str());
   return 0;
 }
 
@@ -371,6 +389,16 @@ int main(int argc, char** argv) {
       ->capture_default_str()
       ->check(CLI::Range(0.5, 60.0));
 
+  std::string import_urdf, import_out;
+  biped::UrdfImportOptions import_options;
+  CLI::App* robot_import = robot_app->add_subcommand(
+      "import", "Turn a URDF into MJCF (free joint, motors, IMU and F/T sites added) and guess the robot file");
+  robot_import->add_option("urdf", import_urdf, "URDF file")->required();
+  robot_import->add_option("--out", import_out, "MJCF file to write")->required();
+  robot_import->add_option("--meshdir", import_options.meshdir, "Folder of the mesh files (default: as the URDF says)");
+  robot_import->add_option("--robot-file", import_options.robot_file,
+                           "Write the guessed robot file there (default: print it)");
+
   // A mistyped command: CLI11 alone would only say that a subcommand is required.
   std::string known;
   bool is_known = false;
@@ -403,6 +431,7 @@ int main(int argc, char** argv) {
     if (*sweep) return speed_sweep_command(sweep_scenario, sweep_options, sweep_overrides, sweep_json);
     if (*params) return params_command(params_markdown);
     if (*robot_check) return robot_check_command(check_robot_file, check_stand_duration);
+    if (*robot_import) return robot_import_command(import_urdf, import_out, import_options);
     if (*campaign) return campaign_command(campaign_spec, campaign_out, campaign_jobs, campaign_overrides);
     if (*push_map) return push_map_command(map_scenario, map_out, map_options, map_jobs, map_overrides);
   } catch (const biped::InputError& e) {

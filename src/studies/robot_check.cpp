@@ -114,6 +114,19 @@ RobotCheckReport check_robot(const std::string& robot_file, const RobotCheckOpti
     const RobotModel model = RobotModel::adopt(compiled, report.mjcf, margin, map);
     add(check_robot_geometry(model));
     report.description = describe_robot(model);
+    std::vector<std::string> no_armature;
+    for (const JointInfo& j : model.joints()) {
+      if (!j.passive && model.mj()->dof_armature[j.dof_adr] <= 0.0) no_armature.push_back(j.name);
+    }
+    if (!no_armature.empty()) {
+      std::string names;
+      for (std::size_t i = 0; i < std::min<std::size_t>(4, no_armature.size()); ++i) names += (i ? ", " : "") + no_armature[i];
+      report.warnings.push_back(report.mjcf + ": " + std::to_string(no_armature.size()) +
+                                " driven joints have no rotor inertia (armature): " + names +
+                                (no_armature.size() > 4 ? ", ..." : "") +
+                                "; drives on light links then oscillate: give the motors' reflected inertia "
+                                "(docs/new-robot.md)");
+    }
   } catch (const ModelError& e) {
     report.problems.push_back(one_line(e.what()));
   }
@@ -124,6 +137,13 @@ RobotCheckReport check_robot(const std::string& robot_file, const RobotCheckOpti
   } catch (const std::runtime_error& e) {  // InputError, ModelError: what the simulator could not build
     report.problems.push_back(one_line(e.what()));
     return report;
+  }
+  if (!report.stand.fell && (report.stand.max_tilt_deg > kStandTiltWarningDeg || report.stand.com_drift > kStandDriftWarning)) {
+    std::ostringstream line;
+    line << std::fixed << std::setprecision(1) << robot_file << ": standing " << report.stand.duration
+         << " s, the upper body tilted up to " << report.stand.max_tilt_deg << " deg and the CoM drifted "
+         << 1e3 * report.stand.com_drift << " mm: the robot rocks or slides (armature, drives, soles: docs/new-robot.md)";
+    report.warnings.push_back(line.str());
   }
   if (report.stand.fell) {
     std::ostringstream line;

@@ -39,7 +39,14 @@ struct RobotCheckReport {
   std::vector<std::string> problems;
   std::optional<RobotDescription> description;  // when the model could be built
   StandTest stand;                               // run only when nothing else was found
+  // What is allowed but looks wrong (one line each, the same form): driven joints without rotor
+  // inertia, a standing robot that tilts or drifts. They do not make the check fail.
+  std::vector<std::string> warnings;
 };
+
+// Above these the standing run is reported as a warning.
+inline constexpr double kStandTiltWarningDeg = 2.0;
+inline constexpr double kStandDriftWarning = 0.02;  // [m]
 
 // Checks the robot file (a path; see resolve_robot_file). Never throws for bad input: every problem
 // becomes a line of the report.

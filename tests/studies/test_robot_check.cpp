@@ -10,6 +10,7 @@
 #include <fstream>
 #include <functional>
 
+#include "io/urdf_import.hpp"
 #include "test_support.hpp"
 
 namespace biped {
@@ -156,6 +157,30 @@ TEST(RobotCheck, FallStanding) {
   EXPECT_TRUE(r.stand.fell);
   ASSERT_EQ(r.problems.size(), 1u) << all(r.problems);
   EXPECT_EQ(r.problems[0].rfind(file + ": the robot fell at ", 0), 0u) << r.problems[0];
+}
+
+// The way of docs/new-robot.md for a URDF: import, give the joints rotor inertia, check, stand.
+TEST(RobotCheck, ImportedUrdfPassesAndStands) {
+  const fs::path dir = test::fresh_dir("robot-check-urdf");
+  const UrdfImport imported = import_urdf(test::source_path("models/examples/small_biped.urdf"),
+                                          (dir / "small_biped.xml").string(), {"", (dir / "small_biped.yaml").string()});
+  std::ofstream(dir / "small_biped.yaml") << imported.robot_file;
+  RobotCheckReport r = check_robot((dir / "small_biped.yaml").string(), short_stand());
+  EXPECT_TRUE(r.problems.empty()) << all(r.problems);
+  ASSERT_FALSE(r.warnings.empty());
+  EXPECT_NE(r.warnings[0].find("have no rotor inertia"), std::string::npos) << r.warnings[0];
+
+  std::ifstream in(dir / "small_biped.xml");
+  std::string xml((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const auto at = xml.find("<default/>");
+  ASSERT_NE(at, std::string::npos);
+  xml.replace(at, 10, "<default><joint armature=\"0.05\" damping=\"0.5\"/></default>");
+  std::ofstream(dir / "small_biped.xml") << xml;
+  r = check_robot((dir / "small_biped.yaml").string(), short_stand());
+  EXPECT_TRUE(r.problems.empty()) << all(r.problems);
+  EXPECT_TRUE(r.warnings.empty()) << all(r.warnings);
+  EXPECT_FALSE(r.stand.fell);
+  EXPECT_LT(r.stand.com_drift, 0.01);
 }
 
 // The command line: exit 2 with the problem lines on stderr; 0 and no problem for a shipped robot.
