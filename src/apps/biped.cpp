@@ -87,7 +87,8 @@ int tables_command(const std::string& robot, const std::string& out_option) {
   const std::string out = out_option.empty()
                               ? (std::filesystem::path(biped::data_directory()) / "config" / "tables" / (config.robot + ".csv")).string()
                               : out_option;
-  biped::prepare_output_directory(std::filesystem::path(out).parent_path().string());
+  const std::filesystem::path out_dir = std::filesystem::path(out).parent_path();
+  biped::prepare_output_directory(out_dir.empty() ? "." : out_dir.string());
   biped::AtomicOutputFile file(out);
   const biped::StepTable table =
       biped::generate_step_table(model, config.controller.walking, biped::StepTableSearch{}, &config.sim, &std::cout);
@@ -380,7 +381,7 @@ int main(int argc, char** argv) {
 
   std::string check_robot_file;
   double check_stand_duration = 3.0;
-  CLI::App* robot_app = app.add_subcommand("robot", "Bring a robot in: check its robot file against its MJCF");
+  CLI::App* robot_app = app.add_subcommand("robot", "Bring a robot in: import a URDF, check a robot file against its MJCF");
   robot_app->require_subcommand(1);
   CLI::App* robot_check = robot_app->add_subcommand(
       "check", "Check a robot file against its MJCF (every problem, one line each), describe the robot, stand it");

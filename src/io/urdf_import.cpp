@@ -290,7 +290,7 @@ Guess guess_parts(const mjModel* m, const ModelGuess& g) {
   }
   // A standing pose: knees bent 40° the way their range allows, hip and ankle pitch half of it the
   // other way (pitch axes alike, as in most models); joints whose zero lies outside their software
-  // limits to the nearest whole degree inside.
+  // limits 5° inside them.
   std::array<double, 2> knee_sign{0.0, 0.0};
   for (int j = 0; j < m->njnt; ++j) {
     if (m->jnt_type[j] != mjJNT_HINGE || !m->jnt_limited[j]) continue;
@@ -315,8 +315,9 @@ Guess guess_parts(const mjModel* m, const ModelGuess& g) {
     const double lo = m->jnt_range[2 * j] + kGuessMargin, hi = m->jnt_range[2 * j + 1] - kGuessMargin;
     const auto it = guess.stand_pose.find(joint_name(m, j));
     const double q = (it != guess.stand_pose.end() ? it->second : 0.0) * kDeg;
-    if (lo < hi && (q < lo || q > hi)) {
-      guess.stand_pose[joint_name(m, j)] = q < lo ? std::ceil(lo / kDeg) : std::floor(hi / kDeg);
+    if (lo < hi && (q < lo || q > hi)) {  // 5° inside (a joint held at its limit stops the walking controller)
+      const double inside = std::min(5.0 * kDeg, 0.5 * (hi - lo));
+      guess.stand_pose[joint_name(m, j)] = q < lo ? std::ceil((lo + inside) / kDeg) : std::floor((hi - inside) / kDeg);
     }
   }
   return guess;
@@ -509,7 +510,7 @@ UrdfImport import_urdf(const std::string& urdf_path, const std::string& mjcf_pat
          "' with sensors " + side + "_ft_force, " + side + "_ft_torque");
   }
   note("not in a URDF: rotor inertia (armature), joint friction and damping: add them (e.g. <default><joint armature=\"0.05\" "
-       "damping=\"1\"/></default>) or the drives oscillate");
+       "damping=\"0.5\"/></default>) or the drives oscillate");
   note("not in a URDF: sites, sensors, actuators, keyframes; the robot file's model_map names the parts (guessed)");
 
   const std::string text = to_text(mjcf);

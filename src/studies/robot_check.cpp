@@ -32,8 +32,7 @@ class ComTrack final : public RunObserver {
 
 // Stands the robot with the standing controller for `duration` seconds.
 StandTest stand(const std::string& robot_file, double duration) {
-  Scenario scenario;
-  scenario.file = robot_file;
+  Scenario scenario;  // robot_file relative to the working directory, as no scenario file holds it
   scenario.name = "robot-check";
   scenario.robot = robot_file;
   scenario.duration = duration;
@@ -65,7 +64,10 @@ std::string resolve_robot_file(const std::string& name_or_path) {
     for (const std::string& robot : known_robots()) known += (known.empty() ? "" : ", ") + robot;
     throw InputError(name_or_path + ": no such robot file (a path to a robot file, or a robot name: " + known + ")");
   }
-  return fs::absolute(file).lexically_normal().string();
+  // As short as it can be said from here (messages name it).
+  const fs::path relative = fs::absolute(file).lexically_relative(fs::current_path());
+  const bool below = !relative.empty() && *relative.begin() != "..";
+  return (below ? relative : fs::absolute(file)).lexically_normal().string();
 }
 
 RobotCheckReport check_robot(const std::string& robot_file, const RobotCheckOptions& options) {
@@ -86,7 +88,6 @@ RobotCheckReport check_robot(const std::string& robot_file, const RobotCheckOpti
 
   // The robot file as `biped run` reads it: its own errors come one at a time (strict reader).
   Scenario scenario;
-  scenario.file = robot_file;
   scenario.robot = robot_file;
   RunConfig config;
   try {
@@ -117,6 +118,14 @@ RobotCheckReport check_robot(const std::string& robot_file, const RobotCheckOpti
     std::vector<std::string> no_armature;
     for (const JointInfo& j : model.joints()) {
       if (!j.passive && model.mj()->dof_armature[j.dof_adr] <= 0.0) no_armature.push_back(j.name);
+    }
+    for (const JointInfo& j : model.joints()) {
+      const double q = model.stand_pose()[model.joint_index(j.name)];
+      if (!j.passive && std::min(q - j.soft_lower, j.soft_upper - q) < kStandPoseLimitWarning) {
+        report.warnings.push_back(report.robot_file + ": the standing pose holds joint '" + j.name +
+                                  "' within 1 deg of a software limit: the walking controller then has no room "
+                                  "(biped tables finds no gait); move it inside");
+      }
     }
     if (!no_armature.empty()) {
       std::string names;

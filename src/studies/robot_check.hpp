@@ -3,6 +3,7 @@
 // else uses it (docs/new-robot.md). Reads the file, checks every part its model_map names and the
 // model's joints, drives and soles (model/model_check.hpp), describes what it found and stands the
 // robot for a few seconds with the standing controller.
+#include <cmath>
 #include <optional>
 #include <string>
 #include <vector>
@@ -11,8 +12,8 @@
 
 namespace biped {
 
-// The robot file a name (config/robots/NAME.yaml) or a path (NAME.yaml) stands for, made absolute;
-// throws InputError when there is no such file.
+// The robot file a name (config/robots/NAME.yaml) or a path (NAME.yaml) stands for, relative to the
+// working directory when it is below it, else absolute; throws InputError when there is no such file.
 std::string resolve_robot_file(const std::string& name_or_path);
 
 struct RobotCheckOptions {
@@ -39,14 +40,16 @@ struct RobotCheckReport {
   std::vector<std::string> problems;
   std::optional<RobotDescription> description;  // when the model could be built
   StandTest stand;                               // run only when nothing else was found
-  // What is allowed but looks wrong (one line each, the same form): driven joints without rotor
-  // inertia, a standing robot that tilts or drifts. They do not make the check fail.
+  // What is allowed but looks wrong (one line each, the same form): a standing pose at a software
+  // limit, driven joints without rotor inertia, a standing robot that tilts or drifts. They do not make the check fail.
   std::vector<std::string> warnings;
 };
 
 // Above these the standing run is reported as a warning.
 inline constexpr double kStandTiltWarningDeg = 2.0;
 inline constexpr double kStandDriftWarning = 0.02;  // [m]
+// A standing pose closer than this to a software limit is reported as a warning.
+inline constexpr double kStandPoseLimitWarning = M_PI / 180.0;  // [rad]
 
 // Checks the robot file (a path; see resolve_robot_file). Never throws for bad input: every problem
 // becomes a line of the report.

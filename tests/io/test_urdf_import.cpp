@@ -81,7 +81,7 @@ TEST(UrdfImport, GuessesTheModelMap) {
   EXPECT_NEAR(sole["y"][1].as<double>(), 0.055, 1e-9);
   EXPECT_NEAR(sole["z"].as<double>(), -0.08, 1e-9);
   EXPECT_EQ(map["stand_pose_deg"]["l_knee"].as<double>(), 40.0) << "knees bent the way their range allows";
-  EXPECT_EQ(map["stand_pose_deg"]["l_elbow"].as<double>(), -5.0) << "zero is outside the elbow's software limits";
+  EXPECT_EQ(map["stand_pose_deg"]["l_elbow"].as<double>(), -10.0) << "zero is outside the elbow's software limits (0° - 5°)";
 }
 
 std::string error_of(const std::string& urdf_text, const char* name) {
