@@ -149,6 +149,17 @@ TEST(RobotCheck, EveryProblemAtOnce) {
   EXPECT_EQ(problems_of(file).size(), 4u) << all(problems_of(file));
 }
 
+// A standing pose right at a software limit passes, with a warning (the walking controller has no room).
+TEST(RobotCheck, StandPoseAtALimitWarns) {
+  const std::string file = broken_copy("jvrc1", "pose-at-limit", [](YAML::Node& r) {
+    r["model_map"]["stand_pose_deg"]["L_ELBOW_P"] = -5.0;  // range [-145°, 0°], software limit -5°
+  });
+  const RobotCheckReport r = check_robot(file, short_stand());
+  EXPECT_TRUE(r.problems.empty()) << all(r.problems);
+  ASSERT_EQ(r.warnings.size(), 1u) << all(r.warnings);
+  EXPECT_NE(r.warnings[0].find("holds joint 'L_ELBOW_P' within 1 deg of a software limit"), std::string::npos) << r.warnings[0];
+}
+
 // Drives too soft to carry the robot: every name is right, and it falls standing.
 TEST(RobotCheck, FallStanding) {
   const std::string file = broken_copy("jvrc1", "soft-drives", [](YAML::Node& r) { r["drives"]["bandwidth_hz"] = 0.5; });
