@@ -82,7 +82,7 @@ int tables_command(const std::string& robot, const std::string& out_option) {
   scenario.file = "biped tables --robot";
   scenario.robot = robot;
   scenario.duration = 1.0;
-  const biped::RunConfig config = biped::make_run_config(scenario);
+  const biped::RunConfig config = biped::make_run_config(scenario, biped::MissingStepTable::UseDefault);
   const biped::RobotModel model = biped::load_controller_model(config);
   const std::string out = out_option.empty()
                               ? (std::filesystem::path(biped::data_directory()) / "config" / "tables" / (config.robot + ".csv")).string()

@@ -340,7 +340,8 @@ void read_stabilization(const YamlReader& r, const YAML::Node& n, StabilizerPara
   }
 }
 
-void read_controller(const YamlReader& r, const YAML::Node& c, ControllerConfig& p) {
+void read_controller(const YamlReader& r, const YAML::Node& c, ControllerConfig& p,
+                     MissingStepTable missing = MissingStepTable::Error) {
   read_section(r, c, controller_section(p));
   p.type = r.text_or(c, "controller", "type", p.type);
   if (p.type != "walking" && p.type != "standing" && p.type != "weight_shift") {
@@ -354,9 +355,12 @@ void read_controller(const YamlReader& r, const YAML::Node& c, ControllerConfig&
   // Before the limits: a scenario's limits.vx_max may still go beyond the table.
   if (c["step_table"]) {
     const std::string table = resolve(r.text(c, "controller", "step_table"), r.file());
-    if (!fs::exists(table)) r.fail(c["step_table"], "controller.step_table", "no such file: " + table);
-    w.plan.table = read_step_table(table);
-    w.plan.limits.vx_max = std::min(w.plan.limits.vx_max, fastest_feasible_speed(w.plan.table));
+    if (fs::exists(table)) {
+      w.plan.table = read_step_table(table);
+      w.plan.limits.vx_max = std::min(w.plan.limits.vx_max, fastest_feasible_speed(w.plan.table));
+    } else if (missing == MissingStepTable::Error) {
+      r.fail(c["step_table"], "controller.step_table", "no such file: " + table + " (make it: biped tables --robot NAME)");
+    }
   }
   read_section(r, r.mapping(c, "controller", "limits"), command_limits_section(w.plan.limits));
   if (c["model"]) {
@@ -386,7 +390,7 @@ void read_model_map(const YamlReader& r, const YAML::Node& n, ModelMap& map) {
   if (!n.IsDefined() || n.IsNull()) return;
   const std::string where = "model_map";
   r.expect_keys(n, where, {"root_body", "upper_body", "imu", "sole_suffix", "legs", "arms", "stand_keyframe",
-                           "stand_pose_deg", "torque_limits", "passive_joints"});
+                           "stand_pose_deg", "torque_limits", "passive_joints", "locked_joints"});
   map.root_body = r.text_or(n, where, "root_body", map.root_body);
   map.upper_body = r.text_or(n, where, "upper_body", map.upper_body);
   map.sole_suffix = r.text_or(n, where, "sole_suffix", map.sole_suffix);
@@ -436,13 +440,16 @@ void read_model_map(const YamlReader& r, const YAML::Node& n, ModelMap& map) {
     const std::string joint = entry.first.Scalar();
     map.torque_limits[joint] = r.positive_or(limits, "model_map.torque_limits", joint.c_str(), 0.0);
   }
-  for (const auto& joint : r.sequence(n, where, "passive_joints")) {
-    if (!joint.IsScalar()) r.fail(joint, "model_map.passive_joints", "must be a list of joint names");
-    map.passive_joints.push_back(joint.Scalar());
+  for (const char* key : {"passive_joints", "locked_joints"}) {
+    std::vector<std::string>& list = std::string(key) == "passive_joints" ? map.passive_joints : map.locked_joints;
+    for (const auto& joint : r.sequence(n, where, key)) {
+      if (!joint.IsScalar()) r.fail(joint, YamlReader::join(where, key), "must be a list of joint names");
+      list.push_back(joint.Scalar());
+    }
   }
 }
 
-void read_robot_file(const std::string& file, RunConfig& config) {
+void read_robot_file(const std::string& file, RunConfig& config, MissingStepTable missing) {
   const YAML::Node root = load_yaml_file(file);
   const YamlReader r(file);
   r.expect_keys(root, "",
@@ -465,7 +472,7 @@ void read_robot_file(const std::string& file, RunConfig& config) {
 
   read_sensor_settings(r, r.mapping(root, "", "sensors"), false, config.sim);
   read_section(r, r.mapping(root, "", "sensor_noise"), sensor_noise_section(config.sim.noise_levels));
-  read_controller(r, r.mapping(root, "", "controller"), config.controller);
+  read_controller(r, r.mapping(root, "", "controller"), config.controller, missing);
 }
 
 }  // namespace
@@ -497,7 +504,7 @@ std::vector<ParameterDoc> parameter_reference() {
                             step_adaptation_section(w.step_adaptation), calibration_section(w.calibration)});
 }
 
-RunConfig make_run_config(const Scenario& s) {
+RunConfig make_run_config(const Scenario& s, MissingStepTable missing) {
   RunConfig config;
   const YamlReader r(s.file);
   const auto has_extension = [&](const char* extension) { return fs::path(s.robot).extension() == extension; };
@@ -508,7 +515,7 @@ RunConfig make_run_config(const Scenario& s) {
       throw InputError(s.file + ": key 'robot': no such robot file: " + config.robot_file);
     }
     config.robot = fs::path(s.robot).stem().string();
-    read_robot_file(config.robot_file, config);
+    read_robot_file(config.robot_file, config, missing);
   } else if (has_extension(".xml")) {
     config.sim.world.robot_mjcf = resolve(s.robot, s.file);
     if (!fs::exists(config.sim.world.robot_mjcf)) {
@@ -525,7 +532,7 @@ RunConfig make_run_config(const Scenario& s) {
     }
     config.robot = s.robot;
     config.robot_file = file.string();
-    read_robot_file(config.robot_file, config);
+    read_robot_file(config.robot_file, config, missing);
   }
   read_simulation(r, s.simulation, config.sim);
   read_controller(r, s.controller, config.controller);

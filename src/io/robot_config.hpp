@@ -34,9 +34,13 @@ std::string data_directory();
 // Names of the robots that have a parameter file.
 std::vector<std::string> known_robots();
 
+// How a robot file's step table that does not exist (yet) is treated: an error, except for
+// `biped tables`, which makes it (the walking plan's default table stands in meanwhile).
+enum class MissingStepTable { Error, UseDefault };
+
 // Resolves the scenario's robot, reads its parameter file, and applies the scenario's overrides,
 // disturbances, terrain, model error and sensor settings. Throws InputError naming file and key.
-RunConfig make_run_config(const Scenario& scenario);
+RunConfig make_run_config(const Scenario& scenario, MissingStepTable missing = MissingStepTable::Error);
 
 // The parameter reference: every numeric and boolean key of the robot files (and of a scenario's
 // `simulation` and `controller` overrides), with the defaults of a default-constructed RunConfig.

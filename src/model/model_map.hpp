@@ -53,6 +53,9 @@ struct ModelMap {
   // Joints without a drive of their own (e.g. finger joints coupled to another by an equality
   // constraint): the controller keeps them out of its tasks and the simulator drives nothing there.
   std::vector<std::string> passive_joints;
+  // Joints the controller holds at the stand pose (their drives keep them there): e.g. a waist or
+  // neck that the paper's task space (Table I) has no use for.
+  std::vector<std::string> locked_joints;
 };
 
 }  // namespace biped

@@ -217,6 +217,7 @@ RobotModel RobotModel::adopt(mjModel* compiled, const std::string& mjcf_path, do
     }
     info.passive =
         std::find(map.passive_joints.begin(), map.passive_joints.end(), info.name) != map.passive_joints.end();
+    info.locked = std::find(map.locked_joints.begin(), map.locked_joints.end(), info.name) != map.locked_joints.end();
     model.joints_.push_back(std::move(info));
   }
   for (const auto& [name, limit] : map.torque_limits) {
@@ -227,6 +228,11 @@ RobotModel RobotModel::adopt(mjModel* compiled, const std::string& mjcf_path, do
   for (const std::string& name : map.passive_joints) {
     if (model.joint_index(name) < 0) {
       throw ModelError(mjcf_path + ": the passive joint '" + name + "' is not a joint of the model");
+    }
+  }
+  for (const std::string& name : map.locked_joints) {
+    if (model.joint_index(name) < 0) {
+      throw ModelError(mjcf_path + ": the locked joint '" + name + "' is not a joint of the model");
     }
   }
   for (Side side : kSides) {

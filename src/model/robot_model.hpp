@@ -36,6 +36,7 @@ struct JointInfo {
   double soft_upper = 0.0;
   double torque_limit = 0.0;  // [N·m] the actuator's ctrlrange, else ModelMap::torque_limits (0: none)
   bool passive = false;       // ModelMap::passive_joints: no drive, kept out of the controller's tasks
+  bool locked = false;        // ModelMap::locked_joints: driven, held at the stand pose, out of the tasks
 };
 
 // A rigid part of a sole: the rectangle of the box geoms "*_sole" of one body, in the sensor frame

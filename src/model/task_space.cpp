@@ -52,7 +52,7 @@ TaskSpace::TaskSpace(const RobotModel& model) : model_(&model) {
   layout_.arm_com_rows = arm_dofs >= 3 ? 3 : 2;
   layout_.has_toes = model.toe_joint(Side::Left) >= 0 && model.toe_joint(Side::Right) >= 0;
   for (const JointInfo& joint : model.joints()) {
-    if (joint.passive) passive_dofs_.push_back(joint.dof_adr);
+    if (joint.passive || joint.locked) held_dofs_.push_back(joint.dof_adr);
   }
 
   static const char* const kXyz[] = {"_x", "_y", "_z"};
@@ -157,8 +157,9 @@ void evaluate(const TaskSpace& space, const Eigen::VectorXd& qpos, const Eigen::
   x.segment<3>(c) = data.com;
   J.middleRows<3>(c) = data.jac_com_;
 
-  // A passive joint has no drive to move it: no task may ask for it.
-  for (int dof : space.passive_dofs()) J.col(dof).setZero();
+  // A passive joint has no drive to move it and a locked one stays at the stand pose: no task may
+  // ask for either (the null-space objective keeps them at the pose).
+  for (int dof : space.held_dofs()) J.col(dof).setZero();
 }
 
 void task_error(const Eigen::VectorXd& x_d, const Eigen::VectorXd& x, Eigen::VectorXd& error) {

@@ -49,8 +49,8 @@ class TaskSpace {
   int arm_body(Side s) const { return arm_body_[index_of(s)]; }  // first body of the arm's subtree
   int upper_body() const { return model_->upper_body(); }
   int root_body() const { return model_->pelvis_body(); }
-  // Velocity addresses of the passive joints, whose Jacobian columns evaluate() sets to zero.
-  const std::vector<int>& passive_dofs() const { return passive_dofs_; }
+  // Velocity addresses of the passive and locked joints, whose Jacobian columns evaluate() zeroes.
+  const std::vector<int>& held_dofs() const { return held_dofs_; }
 
  private:
   const RobotModel* model_;
@@ -58,7 +58,7 @@ class TaskSpace {
   std::array<int, 2> foot_body_{};
   std::array<int, 2> arm_body_{};
   std::vector<std::string> row_names_;
-  std::vector<int> passive_dofs_;
+  std::vector<int> held_dofs_;
 };
 
 // Workspace of evaluate(); everything is sized at construction.

@@ -242,5 +242,33 @@ TEST(RobotConfig, BareMjcfPathUsesDefaults) {
   EXPECT_THROW(make_run_config(scenario_with("/nonexistent/robot.xml")), InputError);
 }
 
+TEST(RobotConfig, ModelMapOfJvrc1ReachesTheSimulationAndIsChecked) {
+  const RunConfig config = make_run_config(scenario_with("jvrc1"));
+  const ModelMap& map = config.sim.world.model_map;
+  EXPECT_EQ(map.root_body, "PELVIS_S");
+  EXPECT_EQ(map.imu_orientation, "");  // `none`
+  EXPECT_EQ(map.legs[index_of(Side::Left)].toe_joint, "");
+  ASSERT_TRUE(map.legs[index_of(Side::Right)].sole.has_value());
+  EXPECT_LT(map.legs[index_of(Side::Right)].sole->z, 0.0);
+  EXPECT_NEAR(map.stand_pose.at("L_KNEE"), 44.0 * M_PI / 180.0, 1e-12);
+  EXPECT_EQ(map.passive_joints.size(), 10u);
+  EXPECT_GT(map.torque_limits.at("R_HIP_P"), 0.0);
+  EXPECT_EQ(make_run_config(scenario_with("lola")).sim.world.model_map.root_body, "pelvis");  // the contract
+}
+
+TEST_F(CustomRobotFile, ModelMapErrorsNameFileAndKey) {
+  const auto expect_error = [&](const std::string& model_map, const std::string& key) {
+    const std::string error = error_of("model_map:\n" + model_map);
+    EXPECT_EQ(error.find(file_ + ":"), 0u) << error;
+    EXPECT_NE(error.find("key '" + key + "'"), std::string::npos) << error;
+  };
+  expect_error("  bodies: {}\n", "model_map.bodies");
+  expect_error("  legs: {left: {sole: {x: [-0.1, 0.2], y: [-0.05, 0.05], z: 0.01}}}\n", "model_map.legs.left.sole.z");
+  expect_error("  legs: {right: {sole: {x: [0.1, 0.2], y: [-0.05, 0.05], z: -0.1}}}\n", "model_map.legs.right.sole");
+  expect_error("  legs: {left: {sole: {x: [0.2, -0.1], y: [-0.05, 0.05], z: -0.1}}}\n", "model_map.legs.left.sole.x");
+  expect_error("  torque_limits: {left_knee: -3}\n", "model_map.torque_limits.left_knee");
+  expect_error("  passive_joints: {a: 1}\n", "model_map.passive_joints");
+}
+
 }  // namespace
 }  // namespace biped

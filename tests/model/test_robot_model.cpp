@@ -150,5 +150,73 @@ TEST(RobotModel, JointIndexOfUnknownNameIsMinusOne) {
   EXPECT_EQ(model.joint_index("left_knee"), 3);
 }
 
+// JVRC-1's parts under its own names (config/robots/jvrc1.yaml holds the full map).
+ModelMap jvrc1_map() {
+  ModelMap map;
+  map.root_body = "PELVIS_S";
+  map.upper_body = "PELVIS_S";
+  map.imu_orientation = "";
+  map.imu_gyro = "Accelerometer_gyro";
+  map.imu_accelerometer = "Accelerometer_accelerometer";
+  const SoleRectangle sole{-0.095, 0.155, -0.05, 0.05, -0.1077};
+  map.legs[index_of(Side::Left)] = {"L_HIP_P", "", "L_ANKLE_P_S", "lf_force", "LeftFootForceSensor_fsensor",
+                                    "LeftFootForceSensor_tsensor", "L_SHOULDER_P", sole};
+  map.legs[index_of(Side::Right)] = {"R_HIP_P", "", "R_ANKLE_P_S", "rf_force", "RightFootForceSensor_fsensor",
+                                     "RightFootForceSensor_tsensor", "R_SHOULDER_P", sole};
+  map.stand_pose = {{"L_HIP_P", -0.4}, {"L_KNEE", 0.8}, {"L_ANKLE_P", -0.4},
+                    {"R_HIP_P", -0.4}, {"R_KNEE", 0.8}, {"R_ANKLE_P", -0.4}};
+  map.torque_limits = {{"L_KNEE", 340.0}};
+  map.passive_joints = {"L_LTHUMB"};
+  return map;
+}
+const std::string kJvrc1 = test::source_path("models/jvrc1/xml/jvrc1.xml");
+
+TEST(RobotModelMap, NamesAnotherModelsPartsAndGivesItsSolesAndPoseAsData) {
+  const RobotModel model = RobotModel::load(kJvrc1, 5.0 * kDeg, jvrc1_map());
+  EXPECT_EQ(model.joints()[model.leg_root_joint(Side::Left)].name, "L_HIP_P");
+  EXPECT_EQ(model.joints()[model.arm_root_joint(Side::Right)].name, "R_SHOULDER_P");
+  EXPECT_EQ(model.toe_joint(Side::Left), -1);
+  EXPECT_EQ(model.imu_orientation_sensor(), -1);
+  EXPECT_EQ(model.body_named("upper_body"), model.upper_body());
+  EXPECT_TRUE(model.foot(Side::Left).sole_geoms.empty());
+  EXPECT_EQ(model.foot(Side::Left).num_segments, 1);
+  EXPECT_DOUBLE_EQ(model.foot(Side::Left).sole_x_max - model.foot(Side::Left).sole_x_min, 0.25);
+  EXPECT_DOUBLE_EQ(model.joints()[model.joint_index("L_KNEE")].torque_limit, 340.0);
+  EXPECT_TRUE(model.joints()[model.joint_index("L_LTHUMB")].passive);
+  EXPECT_FALSE(model.joints()[model.joint_index("L_UTHUMB")].passive);
+  EXPECT_DOUBLE_EQ(model.stand_pose()[model.joint_index("L_KNEE")], 0.8);
+
+  // The stand pose's soles rest level on z = 0: every corner of both rectangles at height zero.
+  RobotData data(model);
+  data.qpos() = model.stand_qpos();
+  mj_kinematics(model.mj(), data.mj());
+  for (Side side : kSides) {
+    const FootInfo& foot = model.foot(side);
+    for (double x : {foot.sole_x_min, foot.sole_x_max}) {
+      for (double y : {foot.sole_y_min, foot.sole_y_max}) {
+        const Eigen::Vector3d corner =
+            data.site_position(foot.sensor_site) + data.site_rotation(foot.sensor_site) * Eigen::Vector3d(x, y, foot.sole_z);
+        EXPECT_NEAR(corner.z(), 0.0, 1e-9);
+      }
+    }
+  }
+}
+
+TEST(RobotModelMap, AMissingPartIsNamedAndTheDefaultsAreTheContract) {
+  ModelMap map = jvrc1_map();
+  map.legs[index_of(Side::Right)].ft_site = "no_such_site";
+  try {
+    RobotModel::load(kJvrc1, 5.0 * kDeg, map);
+    FAIL() << "expected ModelError";
+  } catch (const ModelError& e) {
+    EXPECT_NE(std::string(e.what()).find("'no_such_site'"), std::string::npos) << e.what();
+  }
+  map = jvrc1_map();
+  map.passive_joints = {"NO_JOINT"};
+  EXPECT_THROW(RobotModel::load(kJvrc1, 5.0 * kDeg, map), ModelError);
+  EXPECT_THROW(RobotModel::load(kJvrc1, 5.0 * kDeg), ModelError);  // JVRC-1 does not follow the contract
+  EXPECT_NO_THROW(test::load_model("lola"));                         // LOLA does
+}
+
 }  // namespace
 }  // namespace biped

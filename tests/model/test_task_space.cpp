@@ -209,5 +209,25 @@ TEST_P(TaskSpaceTest, JacobianHasFullRowRankAtStandPose) {
 INSTANTIATE_TEST_SUITE_P(Robots, TaskSpaceTest, ::testing::Values(kLola, kJohnnie),
                          [](const auto& info) { return std::string(info.param.name); });
 
+// A passive joint (no drive: JVRC-1's coupled finger joints) and a locked one are in no task's Jacobian.
+TEST(TaskSpaceHeldJoints, HaveZeroColumns) {
+  ModelMap map;
+  map.passive_joints = {"left_elbow"};
+  map.locked_joints = {"head_pan"};
+  const RobotModel model = RobotModel::load(kLola.path, kMargin, map);
+  const TaskSpace space(model);
+  TaskSpaceData data(space);
+  evaluate(space, model.stand_qpos(), Eigen::Matrix3d::Identity(), data);
+  for (const char* name : {"left_elbow", "head_pan"}) {
+    const int dof = model.joints()[model.joint_index(name)].dof_adr;
+    EXPECT_EQ(data.J.col(dof).norm(), 0.0) << name;
+  }
+  const RobotModel driven = RobotModel::load(kLola.path, kMargin);
+  const TaskSpace driven_space(driven);
+  TaskSpaceData driven_data(driven_space);
+  evaluate(driven_space, driven.stand_qpos(), Eigen::Matrix3d::Identity(), driven_data);
+  EXPECT_GT(driven_data.J.col(driven.joints()[driven.joint_index("left_elbow")].dof_adr).norm(), 0.0);
+}
+
 }  // namespace
 }  // namespace biped
