@@ -245,8 +245,8 @@ int robot_check_command(const std::string& robot_file, double stand_duration) {
   if (!r.mjcf.empty()) std::printf("model:      %s\n", r.mjcf.c_str());
   if (r.description) {
     const biped::RobotDescription& d = *r.description;
-    std::printf("robot:      '%s', %.1f kg; nq %d, nv %d; %d driven joints, %d passive\n", d.name.c_str(), d.mass, d.nq,
-                d.nv, d.actuated, d.passive);
+    std::printf("robot:      '%s', %.1f kg; nq %d, nv %d; %d driven joints (%d locked), %d passive\n", d.name.c_str(),
+                d.mass, d.nq, d.nv, d.actuated, d.locked, d.passive);
     for (biped::Side side : biped::kSides) {
       const int k = biped::index_of(side);
       std::printf("%-5s leg:  %zu DoF: %s%s%s\n", biped::name_of(side), d.leg_joints[k].size(), join(d.leg_joints[k]).c_str(),

@@ -192,6 +192,15 @@ std::vector<ModelProblem> check_model_map(const mjModel* m, const ModelMap& map,
     const int j = mj_name2id(m, mjOBJ_JOINT, name.c_str());
     if (j < 0) p.add("model_map.passive_joints", "the model has no joint named '" + name + "'");
   }
+  const std::set<std::string> locked(map.locked_joints.begin(), map.locked_joints.end());
+  for (const std::string& name : map.locked_joints) {
+    if (mj_name2id(m, mjOBJ_JOINT, name.c_str()) < 0) {
+      p.add("model_map.locked_joints", "the model has no joint named '" + name + "'");
+    } else if (passive.count(name)) {
+      p.add("model_map.locked_joints", "joint '" + name + "' is passive: a locked joint is driven and held at the "
+                                       "standing pose");
+    }
+  }
   for (const auto& [name, limit] : map.torque_limits) {
     if (mj_name2id(m, mjOBJ_JOINT, name.c_str()) < 0) {
       p.add("model_map.torque_limits." + name, "the model has no joint named '" + name + "'");
@@ -312,6 +321,8 @@ std::vector<ModelProblem> check_model_map(const mjModel* m, const ModelMap& map,
       const std::string joint = object_name(m, mjOBJ_JOINT, j);
       if (passive.count(joint)) {
         p.add("model_map.passive_joints", "joint '" + joint + "' is in the " + name_of(side) + " leg: every leg joint needs a drive");
+      } else if (locked.count(joint)) {
+        p.add("model_map.locked_joints", "joint '" + joint + "' is in the " + name_of(side) + " leg: the leg needs every joint");
       } else if (m->jnt_type[j] == mjJNT_HINGE) {
         ++driven;
       }
@@ -417,7 +428,10 @@ RobotDescription describe_robot(const RobotModel& model) {
   d.mass = model.total_mass();
   d.nq = m->nq;
   d.nv = m->nv;
-  for (const JointInfo& j : model.joints()) (j.passive ? d.passive : d.actuated) += 1;
+  for (const JointInfo& j : model.joints()) {
+    (j.passive ? d.passive : d.actuated) += 1;
+    d.locked += j.locked;
+  }
   d.imu_site = model.map().imu_site;
   d.upper_body = model.map().upper_body;
 
@@ -450,7 +464,7 @@ RobotDescription describe_robot(const RobotModel& model) {
     }
     for (int j : joints_below(m, model.joints()[model.arm_root_joint(side)].mj_joint)) {
       const int i = model.joint_index(object_name(m, mjOBJ_JOINT, j));
-      if (i >= 0 && !model.joints()[i].passive) ++d.arm_dof[k];
+      if (i >= 0 && !model.joints()[i].passive && !model.joints()[i].locked) ++d.arm_dof[k];
     }
     const Eigen::Matrix3d r = stand.site_rotation(foot.sensor_site);
     sole_height += 0.5 * (stand.site_position(foot.sensor_site) + r * Eigen::Vector3d(0, 0, foot.sole_z)).z();

@@ -32,7 +32,7 @@ std::vector<int> joints_below(const mjModel* m, int root_joint);
 
 // Stage 1: everything `map` names exists in `m` and has the right type and place (sensors on their
 // sites, sites in their bodies, the root body carries the free joint, legs are chains of at least
-// six driven joints that share nothing with each other, the arms or the upper body), every other
+// six driven, unlocked joints that share nothing with each other, the arms or the upper body), every other
 // joint is a hinge with a range wider than twice the margin, every joint has a torque motor and a
 // torque limit or is passive (and then has no motor or is coupled by an equality constraint), the
 // standing pose names existing joints inside their software limits.
@@ -51,9 +51,10 @@ struct RobotDescription {
   int nq = 0, nv = 0;   // configuration and velocity sizes (floating base included)
   int actuated = 0;     // joints with a drive
   int passive = 0;      // ModelMap::passive_joints
+  int locked = 0;       // ModelMap::locked_joints (driven, held at the standing pose)
   std::array<std::vector<std::string>, 2> leg_joints;  // [left, right] from the root joint to the foot
   std::array<std::string, 2> toe_joints;               // "" without
-  std::array<int, 2> arm_dof{0, 0};                    // driven joints below each arm's root joint
+  std::array<int, 2> arm_dof{0, 0};                    // driven, unlocked joints below each arm's root joint
   std::array<double, 2> sole_length{0.0, 0.0}, sole_width{0.0, 0.0};  // [m]
   std::array<double, 2> leg_length_stand{0.0, 0.0};    // [m] leg root joint's axis to the last leg joint's, standing
   std::array<double, 2> leg_length_stretched{0.0, 0.0};  // the same with every joint at zero

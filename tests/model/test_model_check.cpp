@@ -157,6 +157,11 @@ TEST(ModelCheck, LegsAreChainsOfTheirOwn) {
                                                        "model_map.legs.left.root_joint"})) << all(problems);
   EXPECT_EQ(problems[1].message, "joint 'left_knee' is in the left leg: every leg joint needs a drive");
 
+  map = ModelMap{};
+  map.locked_joints = {"right_ankle_roll", "head_pann"};
+  EXPECT_EQ(keys(check_model_map(m.get(), map, kMargin)),
+            (std::vector<std::string>{"model_map.locked_joints", "model_map.locked_joints", "model_map.legs.right.root_joint"}));
+
   // A joint above both legs is not a leg's first joint.
   const ModelPtr small = small_biped();
   map = small_biped_map();

@@ -160,6 +160,18 @@ TEST(RobotCheck, StandPoseAtALimitWarns) {
   EXPECT_NE(r.warnings[0].find("holds joint 'L_ELBOW_P' within 1 deg of a software limit"), std::string::npos) << r.warnings[0];
 }
 
+// A step table named before `biped tables` made it: a warning, and the robot stands without it.
+TEST(RobotCheck, StepTableNotYetMade) {
+  const std::string file = broken_copy("jvrc1", "no-table", [](YAML::Node& r) {
+    r["controller"]["step_table"] = "jvrc1-new.csv";
+  });
+  const RobotCheckReport r = check_robot(file, short_stand());
+  EXPECT_TRUE(r.problems.empty()) << all(r.problems);
+  ASSERT_EQ(r.warnings.size(), 1u) << all(r.warnings);
+  EXPECT_NE(r.warnings[0].find("key 'controller.step_table': no such file yet"), std::string::npos) << r.warnings[0];
+  EXPECT_TRUE(r.stand.ran);
+}
+
 // Drives too soft to carry the robot: every name is right, and it falls standing.
 TEST(RobotCheck, FallStanding) {
   const std::string file = broken_copy("jvrc1", "soft-drives", [](YAML::Node& r) { r["drives"]["bandwidth_hz"] = 0.5; });
