@@ -18,6 +18,7 @@
 #include "io/campaign_spec.hpp"
 #include "studies/campaign.hpp"
 #include "studies/controller_bench.hpp"
+#include "studies/gain_tuning.hpp"
 #include "studies/push_map.hpp"
 #include "studies/push_test.hpp"
 #include "studies/robot_check.hpp"
@@ -225,6 +226,43 @@ int push_map_command(const std::string& scenario_path, const std::string& out_di
   });
 }
 
+int tune_command(biped::TuningOptions options, const std::string& out_option) {
+  if (biped::MpiSession::launched_under_mpi()) {
+    throw biped::InputError("biped tune: runs on one machine (--jobs), not under an MPI launcher");
+  }
+  options.progress = &std::cerr;
+  const std::string out_dir = out_option.empty() ? (std::filesystem::path("out") / "tune" / options.robot).string() : out_option;
+  const nlohmann::json r = biped::run_gain_tuning(options, out_dir);
+  std::printf("%s: %ld candidates (the start, then %ld generations of %d), %ld training runs of %ld per candidate\n",
+              options.robot.c_str(), static_cast<long>(r["evaluated_candidates"].get<long>()), r["generations"].get<long>(),
+              r["population"].get<int>(), r["training_runs"].get<long>(), r["runs_per_candidate"].get<long>());
+  std::printf("  %-46s %10s %10s %10s   %s\n", "parameter", "robot file", "start", "tuned", "bounds");
+  for (const auto& p : r["parameters"]) {
+    std::printf("  %-46s %10.4g %10.4g %10.4g   %.4g..%.4g (%s)\n", p["key"].get<std::string>().c_str(),
+                p["robot_file"].get<double>(), p["start"].get<double>(), p["tuned"].get<double>(), p["lower"].get<double>(),
+                p["upper"].get<double>(), p["scale"].get<std::string>().c_str());
+  }
+  const nlohmann::json& j = r["objective"];
+  std::printf("  training objective J: start %.4f (%ld falls), tuned %.4f (%ld falls)\n", j["start"].get<double>(),
+              j["start_falls"].get<long>(), j["tuned"].get<double>(), j["tuned_falls"].get<long>());
+  if (r.contains("heldout")) {
+    for (const char* set : {"start", "tuned"}) {
+      const nlohmann::json& h = r["heldout"][set];
+      if (h["survival_rate"].is_null()) continue;
+      std::printf("  held-out (seed %ld, %ld runs), %s gains: survival %.1f %% (95 %% interval %.1f-%.1f %%), %ld falls\n",
+                  r["heldout_seed"].get<long>(), h["runs"].get<long>(), set, 100.0 * h["survival_rate"].get<double>(),
+                  100.0 * h["survival_rate_95ci"][0].get<double>(), 100.0 * h["survival_rate_95ci"][1].get<double>(),
+                  h["falls"].get<long>());
+    }
+    const nlohmann::json& p = r["heldout"]["paired"];
+    std::printf("  paired: %ld held-out runs only the start fell in, %ld only the tuned; exact McNemar p = %.3g\n",
+                p["only_start_fell"].get<long>(), p["only_tuned_fell"].get<long>(), p["mcnemar_p"].get<double>());
+  }
+  std::printf("results: %s/gains.yaml, %s/tune.json, %s/heldout-start/, %s/heldout-tuned/ (%.0f s)\n", out_dir.c_str(),
+              out_dir.c_str(), out_dir.c_str(), out_dir.c_str(), r["wall_time_s"].get<double>());
+  return 0;
+}
+
 int params_command(bool markdown) {
   const std::vector<biped::ParameterDoc> rows = biped::parameter_reference();
   std::cout << (markdown ? biped::markdown_table(rows) : biped::text_table(rows));
@@ -375,6 +413,21 @@ int main(int argc, char** argv) {
   push_map->add_option("--jobs", map_jobs, "Worker threads (default: every core)")->check(CLI::Range(1, 4096));
   push_map->add_option("--set", map_overrides, "Override a scenario key")->type_name("KEY=VALUE");
 
+  biped::TuningOptions tune_options;
+  tune_options.budget = 1000;
+  std::string tune_out;
+  long tune_seed = 0;
+  CLI::App* tune = app.add_subcommand("tune", "Tune the stabilizer's gains by CMA-ES on a training campaign; held-out check; gain file");
+  tune->add_option("--robot", tune_options.robot, "Robot name (a file config/robots/NAME.yaml)")->required();
+  tune->add_option("--budget", tune_options.budget, "Training simulation runs (candidates x runs per candidate)")->capture_default_str();
+  tune->add_option("--out", tune_out, "Output folder (default: out/tune/<robot>)");
+  tune->add_option("--seed", tune_seed, "Training seed, also CMA-ES's (default: the campaign file's); held-out: seed + 1")
+      ->check(CLI::NonNegativeNumber);
+  tune->add_option("--jobs", tune_options.jobs, "Worker threads (default: every core)")->check(CLI::Range(1, 4096));
+  tune->add_option("--campaign", tune_options.campaign, "Training campaign (default: config/campaigns/<robot>-tune.yaml)");
+  tune->add_option("--from", tune_options.from, "Start from this gain file's controller keys (default: the robot file's)");
+  tune->add_option("--holdout", tune_options.heldout_runs, "Held-out runs per gain set (0: none)")->capture_default_str();
+
   bool params_markdown = false;
   CLI::App* params = app.add_subcommand("params", "List the robot files' parameters: key, default, unit, check, description");
   params->add_flag("--markdown", params_markdown, "As the Markdown table of docs/scenarios.md");
@@ -434,6 +487,11 @@ int main(int argc, char** argv) {
     if (*robot_check) return robot_check_command(check_robot_file, check_stand_duration);
     if (*robot_import) return robot_import_command(import_urdf, import_out, import_options);
     if (*campaign) return campaign_command(campaign_spec, campaign_out, campaign_jobs, campaign_overrides);
+    if (*tune) {
+      if (tune->count("--seed") > 0) tune_options.seed = static_cast<std::uint64_t>(tune_seed);
+      for (int i = 0; i < argc; ++i) tune_options.command += (i > 0 ? " " : "") + std::string(argv[i]);
+      return tune_command(tune_options, tune_out);
+    }
     if (*push_map) return push_map_command(map_scenario, map_out, map_options, map_jobs, map_overrides);
   } catch (const biped::InputError& e) {
     std::cerr << "error: " << e.what() << '\n';

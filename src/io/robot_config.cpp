@@ -449,11 +449,28 @@ void read_model_map(const YamlReader& r, const YAML::Node& n, ModelMap& map) {
   }
 }
 
+// `include:` of a robot file: one path or a list, relative to the robot file, each applied over the
+// robot file's own values in order (apply_include_file).
+void read_includes(const YamlReader& r, const YAML::Node& root, RunConfig& config) {
+  const YAML::Node include = root["include"];
+  if (!include) return;
+  if (!include.IsScalar() && !include.IsSequence()) r.fail(include, "include", "expected a path or a list of paths");
+  const std::size_t count = include.IsScalar() ? 1 : include.size();
+  for (std::size_t i = 0; i < count; ++i) {
+    const YAML::Node entry = include.IsScalar() ? include : include[i];
+    const std::string key = include.IsScalar() ? "include" : "include." + std::to_string(i);
+    if (!entry.IsScalar() || entry.Scalar().empty()) r.fail(entry, key, "expected a path");
+    const std::string path = resolve(entry.Scalar(), r.file());
+    if (!fs::is_regular_file(path)) r.fail(entry, key, "no such file: " + path);
+    apply_include_file(path, config);
+  }
+}
+
 void read_robot_file(const std::string& file, RunConfig& config, MissingStepTable missing) {
   const YAML::Node root = load_yaml_file(file);
   const YamlReader r(file);
-  r.expect_keys(root, "",
-                {"model", "model_map", "simulation", "drives", "encoders", "sensors", "sensor_noise", "controller"});
+  r.expect_keys(root, "", {"model", "model_map", "include", "simulation", "drives", "encoders", "sensors",
+                           "sensor_noise", "controller"});
   config.sim.world.robot_mjcf = resolve(r.text(root, "", "model"), file);
   if (!fs::exists(config.sim.world.robot_mjcf)) {
     r.fail(root["model"], "model", "no such file: " + config.sim.world.robot_mjcf);
@@ -473,9 +490,19 @@ void read_robot_file(const std::string& file, RunConfig& config, MissingStepTabl
   read_sensor_settings(r, r.mapping(root, "", "sensors"), false, config.sim);
   read_section(r, r.mapping(root, "", "sensor_noise"), sensor_noise_section(config.sim.noise_levels));
   read_controller(r, r.mapping(root, "", "controller"), config.controller, missing);
+  read_includes(r, root, config);
 }
 
 }  // namespace
+
+void apply_include_file(const std::string& path, RunConfig& config) {
+  const YAML::Node root = load_yaml_file(path);
+  const YamlReader r(path);
+  r.expect_keys(root, "", {"controller", "simulation", "drives"});
+  read_simulation(r, r.mapping(root, "", "simulation"), config.sim);
+  read_section(r, r.mapping(root, "", "drives"), drives_section(config.sim.drives));
+  read_controller(r, r.mapping(root, "", "controller"), config.controller);
+}
 
 std::string data_directory() {
   if (const char* env = std::getenv("BIPED_DATA_DIR"); env && *env) return env;

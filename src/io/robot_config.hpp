@@ -42,6 +42,11 @@ enum class MissingStepTable { Error, UseDefault };
 // disturbances, terrain, model error and sensor settings. Throws InputError naming file and key.
 RunConfig make_run_config(const Scenario& scenario, MissingStepTable missing = MissingStepTable::Error);
 
+// A file that a robot file includes (`include:`; `biped tune` writes them): its `controller:` keys,
+// and optionally `simulation:` and `drives:` keys, override the values in `config`. Throws
+// InputError naming the file and the key.
+void apply_include_file(const std::string& path, RunConfig& config);
+
 // The parameter reference: every numeric and boolean key of the robot files (and of a scenario's
 // `simulation` and `controller` overrides), with the defaults of a default-constructed RunConfig.
 std::vector<ParameterDoc> parameter_reference();

@@ -217,6 +217,20 @@ TEST(BipedCli, AnUnknownCommandIsNamed) {
   EXPECT_NE(o.err.find("run"), std::string::npos) << o.err;
 }
 
+TEST(BipedTune, BadInputIsExitStatusTwoWithOneLineAndNoFiles) {
+  const fs::path out = work_dir() / "tune-out";
+  for (const auto& [args, mention] : {std::pair<std::string, std::string>{"--robot asimo", "unknown robot 'asimo'"},
+                                      {"--robot lola --budget 0", "--budget: must be at least 1"},
+                                      {"--robot lola --budget 30", "--budget: 30 runs are less than"},
+                                      {"--robot lola --from /nonexistent/g.yaml", "--from: no such file"}}) {
+    const Outcome o = biped("tune " + args + " --out " + out.string());
+    EXPECT_EQ(o.status, 2) << args << "\n" << o.err;
+    EXPECT_EQ(lines(o.err), 1) << o.err;
+    EXPECT_NE(o.err.find(mention), std::string::npos) << o.err;
+    EXPECT_FALSE(fs::exists(out));
+  }
+}
+
 // Without --out, a run's files are out/<scenario>/* and the earlier runs' out/<scenario>/previous/<n>/*.
 TEST(BipedRun, TheDefaultOutputFolderKeepsThePreviousRuns) {
   const fs::path cwd = work_dir() / "default-out";

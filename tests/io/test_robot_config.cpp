@@ -235,6 +235,35 @@ TEST(RobotConfig, RobotFileByPath) {
   }
 }
 
+// `include:` files override the robot file's own values, in order; their paths are relative to the
+// robot file; a missing file or an unknown key is one line naming the file and the key.
+TEST_F(CustomRobotFile, IncludesOverrideTheRobotFileInOrder) {
+  const std::filesystem::path dir = std::filesystem::path(file_).parent_path();
+  std::filesystem::create_directories(dir / "gains");
+  std::ofstream(dir / "gains" / "a.yaml") << "controller:\n  stabilization: {tilt_gain: 700, com_gain: 200}\n"
+                                           << "drives: {bandwidth_hz: 22}\nsimulation: {ground_friction: 0.6}\n";
+  std::ofstream(dir / "gains" / "b.yaml") << "controller:\n  stabilization: {com_gain: 250}\n";
+  const std::string own = "controller:\n  stabilization: {tilt_gain: 500, com_gain: 100, tilt_rate_gain: 40}\n";
+  RunConfig c = read("include: gains/a.yaml\n" + own);
+  const StabilizerParams& s = c.controller.walking.stabilization;
+  EXPECT_EQ(s.tilt_gain, 700.0);
+  EXPECT_EQ(s.com_gain, 200.0);
+  EXPECT_EQ(s.tilt_rate_gain, 40.0);
+  EXPECT_EQ(c.sim.drives.bandwidth_hz, 22.0);
+  EXPECT_EQ(c.sim.world.ground_friction, 0.6);
+  c = read("include: [gains/a.yaml, gains/b.yaml]\n" + own);
+  EXPECT_EQ(c.controller.walking.stabilization.tilt_gain, 700.0);
+  EXPECT_EQ(c.controller.walking.stabilization.com_gain, 250.0);
+
+  const std::string missing = (dir / "gains" / "c.yaml").string();
+  EXPECT_EQ(error_of("include: [gains/a.yaml, gains/c.yaml]\n"), file_ + ":2: key 'include.1': no such file: " + missing);
+  std::ofstream(missing) << "controller:\n  stabilization: {tilt_gian: 700}\n";
+  EXPECT_EQ(error_of("include: gains/c.yaml\n").find(missing + ":2: key 'controller.stabilization.tilt_gian': unknown key"), 0u);
+  std::ofstream(missing) << "sensors: {noise: false}\n";
+  EXPECT_EQ(error_of("include: gains/c.yaml\n").find(missing + ":1: key 'sensors': unknown key"), 0u);
+  EXPECT_EQ(error_of("include: {a: 1}\n"), file_ + ":2: key 'include': expected a path or a list of paths");
+}
+
 TEST(RobotConfig, BareMjcfPathUsesDefaults) {
   const RunConfig c = make_run_config(scenario_with(test::model_path("johnnie")));
   EXPECT_EQ(c.robot, "johnnie");
