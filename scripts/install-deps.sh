@@ -18,6 +18,7 @@ demo_packages=(
   libegl-dev libgl-dev            # headers and link libraries of `biped run --video` (EGL, GL), linked into build/biped
   libsqlite3-dev                  # campaign results (campaign.sqlite)
   libopenmpi-dev                  # distributed campaigns (MPI; build/biped runs without a launcher too)
+  libtinyxml2-dev                 # `biped robot import`: reads the URDF, edits the MJCF MuJoCo writes
   libpagmo-dev                    # CMA-ES of `biped tune` (linked into build/biped)
 )
 test_packages=(

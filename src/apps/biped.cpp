@@ -12,6 +12,7 @@
 #include "io/robot_config.hpp"
 #include "io/scenario.hpp"
 #include "io/step_table_file.hpp"
+#include "io/urdf_import.hpp"
 #include "io/video_recorder.hpp"
 #include "io/yaml_reader.hpp"
 #include "io/campaign_spec.hpp"
@@ -20,6 +21,7 @@
 #include "studies/gain_tuning.hpp"
 #include "studies/push_map.hpp"
 #include "studies/push_test.hpp"
+#include "studies/robot_check.hpp"
 #include "studies/scenario_runner.hpp"
 #include "studies/speed_sweep.hpp"
 #include "studies/step_table_search.hpp"
@@ -86,7 +88,8 @@ int tables_command(const std::string& robot, const std::string& out_option) {
   const std::string out = out_option.empty()
                               ? (std::filesystem::path(biped::data_directory()) / "config" / "tables" / (config.robot + ".csv")).string()
                               : out_option;
-  biped::prepare_output_directory(std::filesystem::path(out).parent_path().string());
+  const std::filesystem::path out_dir = std::filesystem::path(out).parent_path();
+  biped::prepare_output_directory(out_dir.empty() ? "." : out_dir.string());
   biped::AtomicOutputFile file(out);
   const biped::StepTable table =
       biped::generate_step_table(model, config.controller.walking, biped::StepTableSearch{}, &config.sim, &std::cout);
@@ -266,6 +269,65 @@ int params_command(bool markdown) {
   return 0;
 }
 
+std::string join(const std::vector<std::string>& names) {
+  std::string list;
+  for (const std::string& name : names) list += (list.empty() ? "" : ", ") + name;
+  return list;
+}
+
+int robot_check_command(const std::string& robot_file, double stand_duration) {
+  biped::RobotCheckOptions options;
+  options.stand_duration = stand_duration;
+  const biped::RobotCheckReport r = biped::check_robot(biped::resolve_robot_file(robot_file), options);
+  std::printf("robot file: %s\n", r.robot_file.c_str());
+  if (!r.mjcf.empty()) std::printf("model:      %s\n", r.mjcf.c_str());
+  if (r.description) {
+    const biped::RobotDescription& d = *r.description;
+    std::printf("robot:      '%s', %.1f kg; nq %d, nv %d; %d driven joints (%d locked), %d passive\n", d.name.c_str(),
+                d.mass, d.nq, d.nv, d.actuated, d.locked, d.passive);
+    for (biped::Side side : biped::kSides) {
+      const int k = biped::index_of(side);
+      std::printf("%-5s leg:  %zu DoF: %s%s%s\n", biped::name_of(side), d.leg_joints[k].size(), join(d.leg_joints[k]).c_str(),
+                  d.toe_joints[k].empty() ? "" : "; toe joint ", d.toe_joints[k].c_str());
+      std::printf("            foot body %s, F/T site %s; sole %.3f m x %.3f m; hip to ankle %.3f m standing, "
+                  "%.3f m stretched\n", d.foot_bodies[k].c_str(), d.ft_sites[k].c_str(), d.sole_length[k],
+                  d.sole_width[k], d.leg_length_stand[k], d.leg_length_stretched[k]);
+    }
+    std::printf("arms:       left %d DoF, right %d DoF\n", d.arm_dof[0], d.arm_dof[1]);
+    std::printf("IMU:        site %s in body %s\n", d.imu_site.c_str(), d.upper_body.c_str());
+    std::printf("standing:   CoM %.3f m above the soles\n", d.com_height_stand);
+  }
+  if (r.stand.ran) {
+    std::printf("stood %.1f s (standing controller): %s, max tilt %.2f deg, CoM drift %.1f mm, CoM height %.3f m\n",
+                r.stand.duration, r.stand.fell ? "FELL" : "no fall", r.stand.max_tilt_deg, 1e3 * r.stand.com_drift,
+                r.stand.com_height);
+  }
+  for (const std::string& line : r.warnings) std::printf("warning: %s\n", line.c_str());
+  for (const std::string& line : r.problems) std::cerr << line << '\n';
+  if (!r.problems.empty()) {
+    std::fprintf(stderr, "robot check: %zu problem(s)\n", r.problems.size());
+    return kExitBadInput;
+  }
+  std::printf("robot check: no problems%s\n", r.warnings.empty() ? "" : ", but see the warnings");
+  return 0;
+}
+
+int robot_import_command(const std::string& urdf, const std::string& out, const biped::UrdfImportOptions& options) {
+  const biped::UrdfImport r = biped::import_urdf(urdf, out, options);
+  for (const std::string& note : r.notes) std::fprintf(stderr, "%s\n", note.c_str());
+  std::fprintf(stderr, "MJCF: %s\n", out.c_str());
+  if (options.robot_file.empty()) {
+    std::printf("%s", r.robot_file.c_str());
+    return 0;
+  }
+  biped::AtomicOutputFile file(options.robot_file);
+  file.stream() << r.robot_file;
+  file.commit();
+  std::fprintf(stderr, "robot file: %s (check it: biped robot check %s)\n", options.robot_file.c_str(),
+               options.robot_file.c_str());
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -370,6 +432,27 @@ int main(int argc, char** argv) {
   CLI::App* params = app.add_subcommand("params", "List the robot files' parameters: key, default, unit, check, description");
   params->add_flag("--markdown", params_markdown, "As the Markdown table of docs/scenarios.md");
 
+  std::string check_robot_file;
+  double check_stand_duration = 3.0;
+  CLI::App* robot_app = app.add_subcommand("robot", "Bring a robot in: import a URDF, check a robot file against its MJCF");
+  robot_app->require_subcommand(1);
+  CLI::App* robot_check = robot_app->add_subcommand(
+      "check", "Check a robot file against its MJCF (every problem, one line each), describe the robot, stand it");
+  robot_check->add_option("robot", check_robot_file, "Robot file (config/robots/NAME.yaml) or robot name")->required();
+  robot_check->add_option("--stand-time", check_stand_duration, "Seconds standing in simulation")
+      ->capture_default_str()
+      ->check(CLI::Range(0.5, 60.0));
+
+  std::string import_urdf, import_out;
+  biped::UrdfImportOptions import_options;
+  CLI::App* robot_import = robot_app->add_subcommand(
+      "import", "Turn a URDF into MJCF (free joint, motors, IMU and F/T sites added) and guess the robot file");
+  robot_import->add_option("urdf", import_urdf, "URDF file")->required();
+  robot_import->add_option("--out", import_out, "MJCF file to write")->required();
+  robot_import->add_option("--meshdir", import_options.meshdir, "Folder of the mesh files (default: as the URDF says)");
+  robot_import->add_option("--robot-file", import_options.robot_file,
+                           "Write the guessed robot file there (default: print it)");
+
   // A mistyped command: CLI11 alone would only say that a subcommand is required.
   std::string known;
   bool is_known = false;
@@ -401,6 +484,8 @@ int main(int argc, char** argv) {
     }
     if (*sweep) return speed_sweep_command(sweep_scenario, sweep_options, sweep_overrides, sweep_json);
     if (*params) return params_command(params_markdown);
+    if (*robot_check) return robot_check_command(check_robot_file, check_stand_duration);
+    if (*robot_import) return robot_import_command(import_urdf, import_out, import_options);
     if (*campaign) return campaign_command(campaign_spec, campaign_out, campaign_jobs, campaign_overrides);
     if (*tune) {
       if (tune->count("--seed") > 0) tune_options.seed = static_cast<std::uint64_t>(tune_seed);

@@ -534,8 +534,16 @@ std::vector<ParameterDoc> parameter_reference() {
 RunConfig make_run_config(const Scenario& s, MissingStepTable missing) {
   RunConfig config;
   const YamlReader r(s.file);
-  const bool is_mjcf = s.robot.size() > 4 && s.robot.substr(s.robot.size() - 4) == ".xml";
-  if (is_mjcf) {
+  const auto has_extension = [&](const char* extension) { return fs::path(s.robot).extension() == extension; };
+  if (has_extension(".yaml")) {
+    // A robot file outside config/robots/ (a robot being brought in: docs/new-robot.md).
+    config.robot_file = resolve(s.robot, s.file);
+    if (!fs::exists(config.robot_file)) {
+      throw InputError(s.file + ": key 'robot': no such robot file: " + config.robot_file);
+    }
+    config.robot = fs::path(s.robot).stem().string();
+    read_robot_file(config.robot_file, config, missing);
+  } else if (has_extension(".xml")) {
     config.sim.world.robot_mjcf = resolve(s.robot, s.file);
     if (!fs::exists(config.sim.world.robot_mjcf)) {
       throw InputError(s.file + ": key 'robot': no such model file: " + config.sim.world.robot_mjcf);
@@ -547,7 +555,7 @@ RunConfig make_run_config(const Scenario& s, MissingStepTable missing) {
       std::string list;
       for (const auto& name : known_robots()) list += (list.empty() ? "" : ", ") + name;
       throw InputError(s.file + ": key 'robot': unknown robot '" + s.robot + "' (known: " + list +
-                       ", or a path to an MJCF .xml file)");
+                       ", or a path to a robot file .yaml or an MJCF file .xml)");
     }
     config.robot = s.robot;
     config.robot_file = file.string();

@@ -15,7 +15,7 @@ namespace biped {
 struct Scenario {
   std::string file;  // path of the scenario file
   std::string name;
-  std::string robot;  // as written: a robot name, or a path to an MJCF file
+  std::string robot;  // as written: a robot name, a path to a robot file (.yaml) or to an MJCF file (.xml)
   double duration = 0.0;
   unsigned long long seed = 1;
   double log_rate_hz = 100.0;

@@ -221,6 +221,20 @@ TEST_F(CustomRobotFile, ErrorsNameFileKeyAndLine) {
   EXPECT_EQ(error_of("encoders:\n  bit: 16\n").find(file_ + ":3: key 'encoders.bit': unknown key"), 0u);
 }
 
+// A robot file anywhere (a robot being brought in), by its path.
+TEST(RobotConfig, RobotFileByPath) {
+  const RunConfig c = make_run_config(scenario_with(test::source_path("config/robots/jvrc1.yaml")));
+  EXPECT_EQ(c.robot, "jvrc1");
+  EXPECT_EQ(c.robot_file, test::source_path("config/robots/jvrc1.yaml"));
+  EXPECT_EQ(c.sim.world.model_map.root_body, "PELVIS_S");
+  try {
+    make_run_config(scenario_with("/nonexistent/robot.yaml"));
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()), "test.yaml: key 'robot': no such robot file: /nonexistent/robot.yaml");
+  }
+}
+
 // `include:` files override the robot file's own values, in order; their paths are relative to the
 // robot file; a missing file or an unknown key is one line naming the file and the key.
 TEST_F(CustomRobotFile, IncludesOverrideTheRobotFileInOrder) {
