@@ -372,6 +372,9 @@ int main(int argc, char** argv) {
   push->add_option("--phase", push_options.phase, "Share of the single support at the push (0..1)")
       ->capture_default_str()
       ->check(CLI::Range(0.0, 1.0));
+  push->add_option("--earliest", push_options.earliest, "Push in the first single support after this time [s]")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
   push->add_option("--set", push_overrides, "Override a scenario key")->type_name("KEY=VALUE");
   double push_at_time = 0.0;
   push->add_option("--at-time", push_at_time, "Push at this time [s] instead of a gait phase (a robot that stands)")

@@ -38,6 +38,8 @@ const ParameterTable<SoleContactParams> kSoleContactParameters = {
      "sole contact per foot: normal stiffness, also of the friction bristles"},
     {"sole_damping_per_foot", &SoleContactParams::damping_per_foot, "N·s/m", kNonNegative,
      "sole contact per foot: normal damping, also of the friction bristles"},
+    {"sole_stiffness_by_point_area", &SoleContactParams::stiffness_by_point_area, "", {},
+     "sole contact: each point's share of the stiffness by the area it represents (a uniformly compliant sole), not equal"},
 };
 
 const ParameterTable<DriveParams> kDriveParameters = {

@@ -146,11 +146,17 @@ SoleContact::SoleContact(std::vector<SoleFace> faces, Terrain terrain, const Sol
       }
     }
   }
-  // Each foot's stiffness is shared equally by its points, so a flat sole has the stated stiffness.
-  int count[2] = {0, 0};
-  for (const Patch& p : patches_) ++count[faces_[p.face].side];
+  // Each foot's stiffness is shared by its points so that a flat sole has the stated stiffness:
+  // equally, or by the area of each point's patch.
+  double foot_area[2] = {0.0, 0.0};
+  int foot_points[2] = {0, 0};
+  for (const Patch& p : patches_) {
+    foot_area[faces_[p.face].side] += p.area;
+    ++foot_points[faces_[p.face].side];
+  }
   for (Patch& p : patches_) {
-    const double n = count[faces_[p.face].side];
+    const int side = faces_[p.face].side;
+    const double n = params.stiffness_by_point_area ? foot_area[side] / p.area : foot_points[side];
     p.stiffness = params.stiffness_per_foot / n;
     p.damping = params.damping_per_foot / n;
     p.tangential_stiffness = params.tangential_stiffness_per_foot / n;
@@ -185,10 +191,8 @@ void SoleContact::apply(const mjModel* m, mjData* d) {
       const SoleFace& f = faces_[current];
       const Eigen::Matrix3d R = math::mat_from_mujoco(d->xmat + 9 * f.body);
       mjtNum velocity[6];
-      // Known defect kept (issue 13): the linear velocity at the body's centre of mass (mjOBJ_BODY)
-      // stands for the body frame origin's. point_velocity() is the right one; with it LOLA's
-      // open-loop walks fall unpushed (docs/simulation.md), so the fix waits for the controller's.
-      mj_objectVelocity(m, d, mjOBJ_BODY, f.body, velocity, 0);
+      // At the body frame's origin (mjOBJ_XBODY), where Pose::velocity measures its lever arm from.
+      mj_objectVelocity(m, d, mjOBJ_XBODY, f.body, velocity, 0);
       pose.body = f.body;
       pose.side = f.side;
       pose.origin = Eigen::Vector3d(d->xpos + 3 * f.body);

@@ -6,10 +6,10 @@
 //
 // Each sole face (the bottom of a sole geom) carries a grid of spring-damper points at most
 // `max_point_spacing` apart, corners and edges included (LOLA: 3×3 on the heel segment and 2×3 on
-// the toe segment per foot, 15 points; JOHNNIE: 3×3 on its one sole). Each foot's stiffness and
-// damping are shared equally by its points, so a flat foot sinks by load/stiffness_per_foot. (A
-// split by the area each point represents puts less stiffness on the corners and edges: it halves
-// the sole's tilt stiffness, and LOLA and JOHNNIE then fall standing on one leg: docs/simulation.md.)
+// the toe segment per foot, 15 points; JOHNNIE: 4×3 on its one sole). Each foot's stiffness and
+// damping are shared by its points, so a flat foot sinks by load/stiffness_per_foot: equally by
+// default, by the area each point represents with `stiffness_by_point_area` (which puts less on the
+// corners and edges and lowers the sole's tilt stiffness: docs/simulation.md).
 // Around each point is its patch, reaching halfway to the next point. Where a terrain edge or kink
 // crosses a patch, the patch's stiffness is spread evenly over it and the pressure integrated
 // exactly over the part below the ground, piece by piece on each side of the line, so the force
@@ -39,6 +39,9 @@ struct SoleContactParams {
   double tangential_damping_per_foot = 1500.0;   // [N·s/m]
   double friction = 0.8;              // Coulomb coefficient (off the terrain's friction patches)
   double max_point_spacing = 0.1;     // [m] grid points along each sole edge at most this far apart
+  // Each point's share of the foot's stiffness and damping: its patch's share of the sole area (a
+  // uniformly compliant sole), or else an equal share (a sole that is stiffer at its rim).
+  bool stiffness_by_point_area = false;
 };
 
 // The bottom face of a sole geom: a rectangle fixed in a body.

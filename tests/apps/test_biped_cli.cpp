@@ -301,11 +301,13 @@ TEST(BipedSpeedSweep, ShowsProgressOnStderrAndEndsWithTheJson) {
 }
 
 TEST(BipedPushTest, FindsTheLargestSurvivedImpulse) {
-  // The open loop: it survives little, so the search is short (tests/io/test_push_test.cpp compares).
-  // Ideal sensors, as in that comparison: with the realistic errors the open loop falls unpushed.
+  // The open loop: it survives little, so the search is short (tests/studies/test_push_test.cpp
+  // compares). Ideal sensors and an early stop, as in that comparison: otherwise the open loop falls
+  // unpushed. The push in the third step's single support (--earliest).
   const std::string scenario = biped::test::source_path("config/scenarios/lola-push.yaml");
-  const Outcome o =
-      biped("push-test " + scenario + " --direction left --set controller.stabilizer=false --set sensors.ideal=true");
+  const Outcome o = biped("push-test " + scenario +
+                          " --direction left --earliest 3.5 --set controller.stabilizer=false --set sensors.ideal=true"
+                          " --set commands.2.t=5.5");
   ASSERT_EQ(o.status, 0) << o.err;
   const auto j = nlohmann::json::parse(o.out);
   EXPECT_EQ(j["direction"], "left");
@@ -315,9 +317,11 @@ TEST(BipedPushTest, FindsTheLargestSurvivedImpulse) {
   EXPECT_DOUBLE_EQ(j["direction_deg"].get<double>(), 90.0);
   EXPECT_GE(j["max_impulse_Ns"].get<double>(), 1.0);
   EXPECT_LT(j["max_impulse_Ns"].get<double>(), 100.0);
-  EXPECT_GT(j["push_time_s"].get<double>(), 4.0);
+  EXPECT_GT(j["push_time_s"].get<double>(), 3.5);
+  EXPECT_LT(j["push_time_s"].get<double>(), 4.7);
   EXPECT_NE(o.err.find("push-test: 0 N·s at 90 deg: survives"), std::string::npos) << "progress on stderr";
-  for (const char* args : {" --direction up", "", " --direction left --direction-deg 30", " --direction-deg 30 --phase 1.5"}) {
+  for (const char* args : {" --direction up", "", " --direction left --direction-deg 30", " --direction-deg 30 --phase 1.5",
+                           " --direction left --earliest -1"}) {
     const Outcome bad = biped("push-test " + scenario + args);
     EXPECT_EQ(bad.status, 2) << args;
     EXPECT_EQ(lines(bad.err), 1) << args << ": " << bad.err;

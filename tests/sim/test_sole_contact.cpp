@@ -103,6 +103,70 @@ TEST(SoleContact, PointVelocityMatchesFiniteDifferences) {
   mj_deleteData(d);
 }
 
+// Each foot's stiffness by the area each point represents: the corners carry a quarter and the
+// edges half of an inner point's share, the foot's total is unchanged, and the sole's tilt stiffness
+// (Σ k_i r_i² about the face centre) is lower than with the equal split.
+TEST(SoleContact, StiffnessByPointAreaFollowsThePatchAreas) {
+  const RobotModel model = test::load_model("johnnie");
+  SoleContactParams equal_params, area_params;
+  area_params.stiffness_by_point_area = true;
+  const SoleContact equal(model, Terrain(), equal_params), by_area(model, Terrain(), area_params);
+  ASSERT_EQ(equal.patches().size(), by_area.patches().size());
+  double total = 0.0, sole_area = 0.0, tilt_equal = 0.0, tilt_area = 0.0;
+  for (std::size_t i = 0; i < by_area.patches().size(); ++i) {
+    const SoleContact::Patch& p = by_area.patches()[i];
+    if (by_area.faces()[p.face].side != index_of(Side::Left)) continue;
+    total += p.stiffness;
+    sole_area += p.area;
+    tilt_equal += equal.patches()[i].stiffness * p.point.squaredNorm();
+    tilt_area += p.stiffness * p.point.squaredNorm();
+  }
+  EXPECT_NEAR(total, area_params.stiffness_per_foot, 1e-6 * total);
+  for (const SoleContact::Patch& p : by_area.patches()) {
+    EXPECT_NEAR(p.stiffness / area_params.stiffness_per_foot, p.area / sole_area, 1e-12);
+    EXPECT_NEAR(p.damping / area_params.damping_per_foot, p.area / sole_area, 1e-12);
+  }
+  EXPECT_LT(tilt_area, 0.8 * tilt_equal);
+}
+
+// The damping acts on each point's own velocity, also where the body's centre of mass is far from
+// its frame's origin (a foot rocking about x on its sole, its mass 0.1 m above and 0.08 m beside the
+// sole's centre).
+TEST(SoleContact, DampingActsOnThePointsOwnVelocity) {
+  const auto dir = test::fresh_dir("offset-foot");
+  const std::string file = (dir / "foot.xml").string();
+  std::ofstream(file) << "<mujoco><option timestep=\"0.001\"/><worldbody><body name=\"foot\">"
+                         "<freejoint/><geom type=\"box\" pos=\"0 0.08 0.1\" size=\"0.1 0.05 0.02\" mass=\"20\""
+                         " contype=\"0\" conaffinity=\"0\"/></body></worldbody></mujoco>";
+  char error[500] = "";
+  mjModel* m = mj_loadXML(file.c_str(), nullptr, error, sizeof(error));
+  ASSERT_NE(m, nullptr) << error;
+  mjData* d = mj_makeData(m);
+  d->qpos[2] = -0.001;  // the sole (at the body's origin) 1 mm deep
+  d->qvel[3] = 0.5;     // rocking about x [rad/s]: the sole's edges move up and down
+  d->qvel[2] = -0.02;
+  mj_forward(m, d);
+  SoleFace face;
+  face.body = 1;
+  face.axes.col(2) = -Eigen::Vector3d::UnitZ();
+  face.axes.col(1) = -Eigen::Vector3d::UnitY();
+  face.half_u = 0.1;
+  face.half_v = 0.05;
+  SoleContact contact(std::vector<SoleFace>{face}, Terrain(), SoleContactParams{});
+  contact.apply(m, d);
+  int checked = 0;
+  for (const SoleContact::Patch& p : contact.patches()) {
+    const Eigen::Vector3d point = world_point(d, 1, face.axes.col(0) * p.point.x() + face.axes.col(1) * p.point.y());
+    const double depth = -point.z();
+    const double expected = std::max(0.0, p.stiffness * depth - p.damping * point_velocity(m, d, 1, point).z());
+    EXPECT_NEAR(p.force.z(), expected, 1e-9 * p.stiffness) << p.point.transpose();
+    checked += expected > 0.0;
+  }
+  EXPECT_GT(checked, 3);
+  mj_deleteData(d);
+  mj_deleteModel(m);
+}
+
 // A loose 20 kg foot: a box with one sole face (0.2 × 0.1 m) under it, free in space, on terrain
 // with a step down of 5 cm at x = 0.
 struct LooseFoot {

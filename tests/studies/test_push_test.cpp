@@ -1,9 +1,14 @@
-// The push test: the stabilizer (eq. 10 with eq. 20) survives at least twice the push impulse of
-// the open-loop baseline, sideways (both ways) and forward, in LOLA's push scenario (a slow walk that the
-// open loop walks through unpushed, so that both sides of the comparison are measured).
+// The push test: in every direction the stabilizer (eq. 10 with eq. 20) survives at least twice the
+// push impulse of the open-loop baseline in the baseline's worst gait phase, in LOLA's push scenario
+// (a slow walk that stops early enough for the open loop to walk it through unpushed, so that both
+// sides of the comparison are measured). Worst phases, because the open loop's catch depends on the phase: its sideways sway
+// makes a push towards the swinging foot at mid-swing survivable (16 N·s) and one at the start of
+// the single support not (1 N·s).
 #include "studies/push_test.hpp"
 
 #include <gtest/gtest.h>
+
+#include <algorithm>
 
 #include "io/yaml_reader.hpp"
 #include "test_support.hpp"
@@ -11,46 +16,47 @@
 namespace biped {
 namespace {
 
-struct OnOff {
-  nlohmann::json on, off;
+struct Worst {
+  double impulse = 1e9;  // [N·s] the smallest over the phases of the largest survived
+  nlohmann::json runs = nlohmann::json::array();
 };
 
-OnOff push_on_and_off(const std::string& direction) {
-  PushTestOptions options;
-  options.direction = direction;
+Worst worst_phase(const std::string& direction, bool stabilizer) {
   const std::string file = test::source_path("config/scenarios/lola-push.yaml");
-  OnOff r;
-  for (bool stabilizer : {true, false}) {
-    // Ideal sensors: the comparison is of the stabilizer, on a plant whose sensors do not differ.
-    const Scenario scenario =
-        load_scenario(file, {std::string("controller.stabilizer=") + (stabilizer ? "true" : "false"), "sensors.ideal=true"});
-    (stabilizer ? r.on : r.off) = run_push_test(scenario, make_run_config(scenario), options);
+  // Ideal sensors: the comparison is of the stabilizer, on a plant whose sensors do not differ.
+  const Scenario scenario =
+      load_scenario(file, {std::string("controller.stabilizer=") + (stabilizer ? "true" : "false"), "sensors.ideal=true",
+                           "commands.2.t=5.5"});
+  Worst worst;
+  for (double phase : {1.0 / 6.0, 0.5, 5.0 / 6.0}) {
+    PushTestOptions options;
+    options.direction = direction;
+    options.phase = phase;
+    options.earliest = 3.5;  // the third step's single support, a step before the walk stops
+    const nlohmann::json r = run_push_test(scenario, make_run_config(scenario), options);
+    EXPECT_EQ(r["stabilizer"].get<bool>(), stabilizer);
+    EXPECT_FALSE(r["falls_without_push"].get<bool>()) << r.dump();
+    EXPECT_FALSE(r["survived_every_impulse_tried"].get<bool>()) << r.dump();
+    EXPECT_GT(r["push_time_s"].get<double>(), 3.5);
+    EXPECT_LT(r["push_time_s"].get<double>(), 4.7) << "within the third step";
+    worst.impulse = std::min(worst.impulse, r["max_impulse_Ns"].get<double>());
+    worst.runs.push_back(r);
   }
-  return r;
+  return worst;
 }
 
-void expect_twice(const OnOff& r) {
-  EXPECT_TRUE(r.on["stabilizer"].get<bool>());
-  EXPECT_FALSE(r.off["stabilizer"].get<bool>());
-  ASSERT_FALSE(r.off["falls_without_push"].get<bool>()) << r.off.dump();
-  ASSERT_FALSE(r.on["falls_without_push"].get<bool>()) << r.on.dump();
-  // Each push lands in the middle of a single support of its own gait, after t = 4 s.
-  EXPECT_GT(r.on["push_time_s"].get<double>(), 4.0);
-  EXPECT_GT(r.off["push_time_s"].get<double>(), 4.0);
-  EXPECT_NEAR(r.on["push_time_s"].get<double>(), r.off["push_time_s"].get<double>(), 0.5) << "the same step";
-  EXPECT_GE(r.on["max_impulse_Ns"].get<double>(), 2.0 * r.off["max_impulse_Ns"].get<double>())
-      << "on " << r.on.dump() << "\noff " << r.off.dump();
-  EXPECT_GT(r.on["max_impulse_Ns"].get<double>(), r.off["max_impulse_Ns"].get<double>()) << "also where the open loop survives nothing";
-  EXPECT_FALSE(r.on["survived_every_impulse_tried"].get<bool>());
-  EXPECT_NEAR(r.on["phase"].get<double>(), 0.5, 1e-12);
+void expect_twice(const std::string& direction) {
+  const Worst on = worst_phase(direction, true), off = worst_phase(direction, false);
+  EXPECT_GE(on.impulse, 2.0 * off.impulse) << "on " << on.runs.dump() << "\noff " << off.runs.dump();
+  EXPECT_GT(on.impulse, off.impulse) << "also where the open loop survives nothing";
 }
 
-TEST(PushTest, StabilizerSurvivesTwiceTheOpenLoopLateralPush) { expect_twice(push_on_and_off("left")); }
+TEST(PushTest, StabilizerSurvivesTwiceTheOpenLoopLateralPush) { expect_twice("left"); }
 
-// Towards the swinging foot, which the open loop catches with its next step.
-TEST(PushTest, StabilizerSurvivesTwiceTheOpenLoopPushTowardsTheSwingFoot) { expect_twice(push_on_and_off("right")); }
+// Towards the swinging foot, which the open loop catches with its next step in some phases.
+TEST(PushTest, StabilizerSurvivesTwiceTheOpenLoopPushTowardsTheSwingFoot) { expect_twice("right"); }
 
-TEST(PushTest, StabilizerSurvivesTwiceTheOpenLoopSagittalPush) { expect_twice(push_on_and_off("forward")); }
+TEST(PushTest, StabilizerSurvivesTwiceTheOpenLoopSagittalPush) { expect_twice("forward"); }
 
 TEST(PushTest, RejectsAnUnknownDirection) {
   const Scenario scenario = load_scenario(test::source_path("config/scenarios/lola-push.yaml"));
