@@ -20,7 +20,8 @@ void StepAdaptation::idle() {
 void StepAdaptation::update(double dt, const StepAdaptationInput& in) {
   const double omega = std::sqrt(in.gravity / in.com_height);
   dcm_error_ = (in.measured_com - in.planned_com) + (in.measured_com_rate - in.planned_com_rate) / omega;
-  if (!params_.enabled || !dcm_error_.allFinite() || in.time_to_touchdown < params_.freeze_time) {
+  if (!params_.enabled || !dcm_error_.allFinite() || in.time_to_touchdown < params_.freeze_time ||
+      in.swing_foot_on_ground) {
     rate_.setZero();
     return;
   }

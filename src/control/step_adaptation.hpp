@@ -17,9 +17,9 @@
 namespace biped {
 
 struct StepAdaptationParams {
-  // Off by default: with the realistic sensor errors it does not yet help (docs/stabilizer.md,
-  // "Step adaptation": pushes and random joystick timelines, on against off).
-  bool enabled = false;
+  // On against off: pushes survived and runs of LOLA's training campaign (docs/stabilizer.md,
+  // "Step adaptation").
+  bool enabled = true;
   double gain = 1.0;             // share of the DCM error left at touchdown taken up by the step
   // [-] share of the CoP's reach in the stance sole counted on for absorbing the DCM error (the rest
   // is kept for the stabilizer's balancing of the remaining motion)
@@ -36,8 +36,10 @@ struct StepAdaptationParams {
   double filter_time = 0.02;     // [s] first-order filter of the shift
   double max_rate = 1.0;         // [m/s] the landing point moves at most this fast
   double freeze_time = 0.06;     // [s] the landing point is held this long before touchdown
-  // [m] at a touchdown, the pattern is replanned from the measured CoM state instead of its own
-  // when their DCMs differ by more than this (the plan then continues from where the robot is).
+  // At a touchdown, the pattern is replanned from the measured CoM state instead of its own when
+  // their DCMs differ by more than `replan_threshold` [m] (the plan then continues from where the
+  // robot is). Off: it cost pushes as much as 3 N·s and gained none (docs/stabilizer.md).
+  bool replan = false;
   double replan_threshold = 0.08;
 };
 
@@ -55,6 +57,7 @@ struct StepAdaptationInput {
   // backward, sideways (each ≥ 0) [m].
   double cop_forward = 0.05, cop_backward = 0.05, cop_sideways = 0.03;
   double com_height = 0.9;                                 // [m] z_c of ω₀
+  bool swing_foot_on_ground = false;  // the swing foot's measured normal force says it has landed (early)
   double gravity = 9.81;
 };
 

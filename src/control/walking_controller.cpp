@@ -89,7 +89,7 @@ void WalkingController::step(const SensorData& raw_sensors, const WalkCommand& c
     publish_status();
     return;
   }
-  adapt_steps();
+  adapt_steps(sensors);
   const PatternSample& sample = plan_.advance(sensors.time - start_time_, command);
   adapt_to_terrain(sensors);
   reference_.update(sample, terrain_, rmrc_.task());
@@ -137,7 +137,7 @@ bool WalkingController::detect_fall(const SensorData& sensors) {
   return true;
 }
 
-void WalkingController::adapt_steps() {
+void WalkingController::adapt_steps(const SensorData& sensors) {
   const PatternSample& s = plan_.sample();
   const bool estimate = params_.stabilizer && status_.com_estimate_valid && params_.step_adaptation.enabled;
   {
@@ -145,7 +145,7 @@ void WalkingController::adapt_steps() {
     const Eigen::Matrix2d to_world = yaw_rotation(s.heading).topLeftCorner<2, 2>();
     plan_.set_measured_com(stance.position.head<2>() + to_world * com_estimator_.estimate(),
                            stance.velocity.head<2>() + to_world * com_estimator_.rate(),
-                           params_.step_adaptation.replan_threshold, estimate);
+                           params_.step_adaptation.replan_threshold, estimate && params_.step_adaptation.replan);
   }
   const int swing = !s.feet[0].in_contact ? 0 : !s.feet[1].in_contact ? 1 : -1;
   if (swing < 0 || !estimate || plan_.num_planned_steps() == 0) {
@@ -172,6 +172,9 @@ void WalkingController::adapt_steps() {
   in.cop_backward = std::max(0.0, zmp_x - foot.sensor_position.x() - foot.sole_x_min - margin);
   in.cop_sideways = std::max(0.0, std::min(foot.sole_y_max, -foot.sole_y_min) - margin);
   in.gravity = model_.gravity();
+  // A foot that has met the ground before its planned touchdown is not moved any more: it carries
+  // load, and dragging it would push the robot off its feet.
+  in.swing_foot_on_ground = sensors.foot_wrench[swing].force.z() > params_.terrain.contact_force;
   step_adaptation_.update(params_.rmrc.dt, in);
   const Eigen::Matrix2d to_world = to_heading.transpose();
   plan_.shift_landing(to_world * step_adaptation_.shift(), to_world * step_adaptation_.shift_rate());

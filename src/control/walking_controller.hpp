@@ -75,7 +75,7 @@ class WalkingController final : public Controller {
   // The upper body tilted beyond recovery: the fallen state.
   bool detect_fall(const SensorData& sensors);
   // Where the foot in the air lands, from the last cycle's state estimate (control/step_adaptation).
-  void adapt_steps();
+  void adapt_steps(const SensorData& sensors);
   // The footholds' and the CoM's heights from the F/T sensors (both needed).
   void adapt_to_terrain(const SensorData& sensors);
   // eqs. (10)–(20) with the state estimate: the feet's modification Δx_λ of eq. (21)'s reference.

@@ -268,8 +268,10 @@ const ParameterTable<StepAdaptationParams> kStepAdaptationParameters = {
     {"filter_time", &StepAdaptationParams::filter_time, "s", kNonNegative, "filter of the landing point's shift"},
     {"max_rate", &StepAdaptationParams::max_rate, "m/s", kPositive, "the landing point moves at most this fast"},
     {"freeze_time", &StepAdaptationParams::freeze_time, "s", kNonNegative, "the landing point is held this long before touchdown"},
+    {"replan", &StepAdaptationParams::replan, "", {},
+     "step adaptation: at a touchdown, replan from the measured CoM when the DCMs differ by more than replan_threshold"},
     {"replan_threshold", &StepAdaptationParams::replan_threshold, "m", kNonNegative,
-     "at a touchdown the pattern restarts from the measured CoM when the DCMs differ by more"},
+     "step adaptation with replan: the DCM difference beyond which a touchdown replans from the measured CoM"},
 };
 
 ParameterSection simulation_section(SimulationParams& p) {

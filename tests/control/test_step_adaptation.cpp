@@ -168,6 +168,22 @@ TEST(StepAdaptation, RateLimitedHeldBeforeTouchdownAndResetOnTheGround) {
   EXPECT_EQ(adaptation.shift(), Eigen::Vector2d::Zero());
 }
 
+// A swing foot that has met the ground before its planned touchdown carries load: its landing point
+// is held, whatever the DCM error does meanwhile (the impact itself swings the estimate).
+TEST(StepAdaptation, HeldOnceTheSwingFootHasMetTheGround) {
+  StepAdaptation adaptation{switched_on()};
+  StepAdaptationInput in = mid_swing();
+  in.measured_com = {0.08, 0.0};
+  const Eigen::Vector2d settled = settle(adaptation, in);
+  EXPECT_GT(settled.x(), 0.0);
+  in.swing_foot_on_ground = true;
+  in.measured_com = {0.2, 0.0};
+  settle(adaptation, in, 100);
+  EXPECT_EQ(adaptation.shift(), settled);
+  EXPECT_EQ(adaptation.shift_rate(), Eigen::Vector2d::Zero());
+  EXPECT_GT(adaptation.dcm_error().x(), 0.19) << "the error is still measured";
+}
+
 TEST(StepAdaptation, NonFiniteStateLeavesTheShiftAsItWas) {
   StepAdaptation adaptation{switched_on()};
   StepAdaptationInput in = mid_swing();
