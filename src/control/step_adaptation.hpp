@@ -17,8 +17,8 @@
 namespace biped {
 
 struct StepAdaptationParams {
-  // On against off: pushes survived and runs of LOLA's training campaign (docs/stabilizer.md,
-  // "Step adaptation").
+  // On against off: pushes survived and runs of LOLA's and JOHNNIE's training campaigns
+  // (docs/stabilizer.md, "Step adaptation").
   bool enabled = true;
   double gain = 1.0;             // share of the DCM error left at touchdown taken up by the step
   // [-] share of the CoP's reach in the stance sole counted on for absorbing the DCM error (the rest

@@ -114,13 +114,6 @@ std::vector<SoleFace> sole_faces(const RobotModel& plant) {
   return faces;
 }
 
-Eigen::Vector3d point_velocity(const mjModel* m, const mjData* d, int body, const Eigen::Vector3d& p) {
-  mjtNum velocity[6];  // angular, linear: at the body frame's origin, world axes
-  mj_objectVelocity(m, d, mjOBJ_XBODY, body, velocity, 0);
-  const Eigen::Vector3d omega(velocity[0], velocity[1], velocity[2]);
-  return Eigen::Vector3d(velocity[3], velocity[4], velocity[5]) + omega.cross(p - Eigen::Vector3d(d->xpos + 3 * body));
-}
-
 SoleContact::SoleContact(const RobotModel& plant, Terrain terrain, const SoleContactParams& params)
     : SoleContact(sole_faces(plant), std::move(terrain), params) {}
 

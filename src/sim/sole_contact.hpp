@@ -56,10 +56,6 @@ struct SoleFace {
 // ModelMap gives in the sensor frame.
 std::vector<SoleFace> sole_faces(const RobotModel& plant);
 
-// Velocity (world frame) of the point p (world) moving with a body: the body frame origin's velocity
-// plus ω × (p − origin). (mj_objectVelocity of mjOBJ_BODY is centred at the body's centre of mass.)
-Eigen::Vector3d point_velocity(const mjModel* m, const mjData* d, int body, const Eigen::Vector3d& p);
-
 class SoleContact {
  public:
   SoleContact(std::vector<SoleFace> faces, Terrain terrain, const SoleContactParams& params);

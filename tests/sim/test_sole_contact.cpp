@@ -31,6 +31,15 @@ Eigen::Vector3d patch_point(const SoleContact& contact, const SoleContact::Patch
   return world_point(d, f.body, f.center + f.axes.col(0) * p.point.x() + f.axes.col(1) * p.point.y());
 }
 
+// Velocity (world frame) of the point p (world) moving with a body: the body frame origin's velocity
+// plus ω × (p − origin). (mj_objectVelocity of mjOBJ_BODY is centred at the body's centre of mass.)
+Eigen::Vector3d point_velocity(const mjModel* m, const mjData* d, int body, const Eigen::Vector3d& p) {
+  mjtNum velocity[6];  // angular, linear: at the body frame's origin, world axes
+  mj_objectVelocity(m, d, mjOBJ_XBODY, body, velocity, 0);
+  const Eigen::Vector3d omega(velocity[0], velocity[1], velocity[2]);
+  return Eigen::Vector3d(velocity[3], velocity[4], velocity[5]) + omega.cross(p - Eigen::Vector3d(d->xpos + 3 * body));
+}
+
 // The sole sinks by the load it carries divided by its stiffness (N/m, robots.md).
 TEST(SoleContact, DeflectionFollowsThePhysicalStiffness) {
   const RobotModel model = test::load_model("lola");
