@@ -50,7 +50,8 @@ double WalkingPlan::max_speed_change() const {
 
 const PatternSample& WalkingPlan::advance(double t, const WalkCommand& command) {
   const VelocityCommand v = saturate({command.vx, command.vy, command.omega}, params_.limits, command_saturated_);
-  const bool commanded = !command.stop && (std::abs(v.vx) + std::abs(v.vy) + std::abs(v.omega) > 1e-3);
+  const bool commanded = !command.stop && fsm_.state() != WalkingState::SafeStop &&
+                         (std::abs(v.vx) + std::abs(v.vy) + std::abs(v.omega) > 1e-3);
   // Too fast to stop in one step: keep walking and slow down first.
   const bool wants_to_walk = commanded || std::abs(planned_vx_) > max_speed_change() + 1e-9;
   const bool at_touchdown = num_planned_ > 0 && t >= pattern_.next_touchdown() - 1e-9;

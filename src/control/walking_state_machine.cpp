@@ -36,6 +36,7 @@ StepDecision WalkingStateMachine::update(bool wants_to_walk, bool at_touchdown) 
     case WalkingState::SafeStop:
       if (!at_touchdown) return StepDecision::None;
       if (stop_progress_ == WalkingState::Starting || stop_progress_ == WalkingState::Walking) {
+        if (wants_to_walk) return StepDecision::Continue;  // too fast to stop in one step: slow down
         stop_progress_ = WalkingState::Stopping;
         return StepDecision::StopStep;
       }

@@ -2,9 +2,10 @@
 // The walking state machine (Fig. 3's FSM): coordinates the planning and control modules.
 //   standing ──(walk command)──► starting ──(first touchdown)──► walking
 //   walking ──(stop or zero command at a touchdown)──► stopping ──(feet side by side)──► standing
-//   any ──(sensor fault)──► safe_stop: the controller stops using its sensors; a step under way is
-//   finished, one more step puts the feet side by side, and the robot stands (the pattern and
-//   eq. (21) need no sensors). Left only by a restart.
+//   any ──(sensor fault)──► safe_stop: the walk command is ignored; a step under way is finished,
+//   steps that slow down follow while the gait is too fast to stop in one step (as a normal stop
+//   does), one more step puts the feet side by side, and the robot stands (the pattern and
+//   eq. (21) need no sensors; what depends on the failed sensor is off). Left only by a restart.
 //   any ──(upper body tilted beyond recovery)──► fallen: nothing is planned any more and the joints
 //   hold their last set-points (finite, inside the software limits). Left only by a restart.
 namespace biped {
@@ -26,8 +27,9 @@ class WalkingStateMachine {
  public:
   WalkingState state() const { return state_; }
 
-  // Called every cycle: `wants_to_walk` = nonzero command without stop; `at_touchdown` = the
-  // current plan's next touchdown has been reached.
+  // Called every cycle: `wants_to_walk` = nonzero command without stop, or a gait too fast to stop
+  // in one step (in safe_stop only the latter); `at_touchdown` = the current plan's next touchdown
+  // has been reached.
   StepDecision update(bool wants_to_walk, bool at_touchdown);
   void enter_safe_stop();
   void enter_fallen() { state_ = WalkingState::Fallen; }

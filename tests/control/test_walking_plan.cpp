@@ -285,6 +285,32 @@ TEST(WalkingPlan, SafeStopFinishesTheStepTakesOneMoreAndStands) {
   expect_side_by_side(f.plan.sample(), f.step_width());
 }
 
+// A safe stop at the fastest gait: the walk command is ignored, the steps shorten at the ramp's rate
+// (as for a normal stop) until one step can stop the gait, and the robot stands.
+TEST(WalkingPlan, SafeStopFromTheFastestGaitSlowsDownFirst) {
+  PlanFixture f;
+  const double fastest = f.params.limits.vx_max;
+  f.run(12.0, walk(fastest));
+  ASSERT_EQ(f.plan.state(), WalkingState::Walking);
+  ASSERT_GT(fastest, f.plan.max_speed_change()) << "the fixture's fastest gait must need slowing down";
+  const std::size_t before = f.touchdowns.size();
+  f.plan.enter_safe_stop();
+  f.run(24.0, walk(fastest));
+
+  EXPECT_EQ(f.plan.num_planned_steps(), 0);
+  expect_side_by_side(f.plan.sample(), f.step_width());
+  ASSERT_GE(f.touchdowns.size(), before + 4) << "the step under way, at least one slower step, the stop step";
+  const double most_per_step = f.params.limits.vx_rate * f.step_time() * f.step_time();
+  for (std::size_t i = before; i < f.touchdowns.size(); ++i) {
+    const Footstep& previous = f.touchdowns[i - 1].planned;
+    const Footstep& now = f.touchdowns[i].planned;
+    const double advance = now.position.x() - previous.position.x();
+    const double previous_advance = previous.position.x() - f.touchdowns[i - 2].planned.position.x();
+    EXPECT_LE(advance, previous_advance + 1e-9) << "never faster, whatever the command: step " << i;
+    EXPECT_GE(advance, previous_advance - most_per_step - 1e-9) << "no abrupt stop: step " << i;
+  }
+}
+
 // Entered while standing, the safe stop never starts a step.
 TEST(WalkingPlan, SafeStopFromStandingTakesNoStep) {
   PlanFixture f;

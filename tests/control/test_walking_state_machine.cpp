@@ -29,11 +29,25 @@ TEST(WalkingStateMachine, SafeStopFinishesTheStepStopsAndStaysStopped) {
   fsm.enter_safe_stop();
   EXPECT_EQ(fsm.state(), WalkingState::SafeStop);
   EXPECT_STREQ(name_of(fsm.state()), "safe_stop");
-  EXPECT_EQ(fsm.update(true, false), StepDecision::None);
-  EXPECT_EQ(fsm.update(true, true), StepDecision::StopStep) << "the walk command is ignored";
+  EXPECT_EQ(fsm.update(false, false), StepDecision::None);
+  EXPECT_EQ(fsm.update(false, true), StepDecision::StopStep);
   EXPECT_EQ(fsm.update(true, true), StepDecision::Stand);
   EXPECT_EQ(fsm.update(true, true), StepDecision::None);
   EXPECT_EQ(fsm.state(), WalkingState::SafeStop);
+}
+
+// Too fast to stop in one step (wants_to_walk in safe_stop): the stop waits for steps that slow down.
+TEST(WalkingStateMachine, SafeStopFromAFastGaitSlowsDownBeforeTheStopStep) {
+  WalkingStateMachine fsm;
+  fsm.update(true, false);
+  fsm.update(true, true);  // walking
+  fsm.enter_safe_stop();
+  EXPECT_EQ(fsm.update(true, true), StepDecision::Continue);
+  EXPECT_EQ(fsm.update(true, true), StepDecision::Continue);
+  EXPECT_EQ(fsm.state(), WalkingState::SafeStop);
+  EXPECT_EQ(fsm.update(false, true), StepDecision::StopStep);
+  EXPECT_EQ(fsm.update(true, true), StepDecision::Stand) << "once stopping, nothing restarts the walk";
+  EXPECT_EQ(fsm.update(true, true), StepDecision::None);
 }
 
 TEST(WalkingStateMachine, SafeStopWhileStandingKeepsStanding) {
