@@ -17,6 +17,11 @@ struct SensorLimits {
   // [rad] an encoder reading that stays bit-identical for frozen_cycles while its set-point moves
   // by more than this is frozen (a joint that follows its set-point changes its reading).
   double encoder_frozen_motion = 0.02;
+  // [s] a failed F/T sensor or IMU whose readings stay plausible and alive this long is trusted
+  // again (0: every fault lasts for the run). Twice the frozen check's window at 1 kHz, so that a
+  // still-frozen signal is found within it; short against a step, so that a foot that lands after a
+  // transient fault has its force control back.
+  double recovery_time = 0.1;
 };
 
 // Every implausible signal of the reading, added to `out` (time, encoders, IMU, F/T).

@@ -18,6 +18,7 @@ void SensorMonitor::reset(const SensorData& first) {
   health_.time = health_.imu = true;
   health_.force_torque = {true, true};
   health_.encoder_failed.setZero();
+  recovered_.clear();
   last_encoder_ = first.joint_position;
   setpoint_at_repeat_ = first.joint_position;
   encoder_repeats_.setZero();
@@ -72,6 +73,41 @@ void SensorMonitor::update(const SensorData& raw, const Eigen::VectorXd& setpoin
     last_encoder_[i] = q;
   }
   for (int k = 0; k < found_.count; ++k) latch(found_.items[k], new_faults);
+  readmit_recovered(raw.time);
+}
+
+bool SensorMonitor::found(FaultSignal signal, int index) const {
+  for (int k = 0; k < found_.count; ++k) {
+    const Fault& f = found_.items[k];
+    const bool imu = f.signal == FaultSignal::Imu || f.signal == FaultSignal::ImuOrientation ||
+                     f.signal == FaultSignal::ImuAngularRate || f.signal == FaultSignal::ImuAcceleration;
+    if (signal == FaultSignal::Imu ? imu : f.signal == signal && f.index == index) return true;
+  }
+  return false;
+}
+
+void SensorMonitor::readmit_recovered(double time) {
+  recovered_.clear();
+  if (limits_.recovery_time <= 0.0) return;
+  // A reading with a finding restarts the clock; found_ holds every finding of this cycle, also
+  // those of signals already failed (a frozen signal is found every cycle once frozen_cycles pass).
+  for (int k = 0; k < 2; ++k) {
+    if (health_.force_torque[k]) continue;
+    if (found(FaultSignal::ForceTorque, k)) {
+      ft_healthy_since_[k] = time;
+    } else if (time - ft_healthy_since_[k] >= limits_.recovery_time) {
+      health_.force_torque[k] = true;
+      recovered_.add({FaultSignal::ForceTorque, FaultCheck::None, k, time});
+    }
+  }
+  if (!health_.imu) {
+    if (found(FaultSignal::Imu, -1)) {
+      imu_healthy_since_ = time;
+    } else if (time - imu_healthy_since_ >= limits_.recovery_time) {
+      health_.imu = true;
+      recovered_.add({FaultSignal::Imu, FaultCheck::None, -1, time});
+    }
+  }
 }
 
 }  // namespace biped

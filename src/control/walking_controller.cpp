@@ -106,6 +106,8 @@ const SensorData& WalkingController::detect_faults(const SensorData& raw) {
     status_.faults.add(new_faults_.items[k]);
     plan_.enter_safe_stop();
   }
+  // A recovered sensor is used again; the safe stop goes on (walking resumes only by a restart).
+  for (int k = 0; k < monitor_.recovered().count; ++k) status_.recovered.add(monitor_.recovered().items[k]);
   const SensorHealth& h = health();
   if (h.all_good()) {
     last_time_ = raw.time;

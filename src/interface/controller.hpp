@@ -28,6 +28,7 @@ struct ControllerStatus {
   bool fault = false;           // a sensor fault was detected; set-points are held safe
   Fault first_fault;            // the first fault detected (what the safe stop answers)
   FaultList faults;             // every signal found failed so far, in the order found
+  FaultList recovered;          // failed signals trusted again (healthy for a while), in that order
   std::array<Wrench, 2> desired_wrench;  // contact wrench the controller aims for, per foot
   Eigen::Vector3d com_desired = Eigen::Vector3d::Zero();  // planned CoM (controller frame)
   Eigen::Vector2d zmp_desired = Eigen::Vector2d::Zero();  // planned ZMP (controller frame)

@@ -223,6 +223,8 @@ const ParameterTable<SensorLimits> kSensorLimitParameters = {
      "an encoder moving farther than this in one cycle has jumped"},
     {"encoder_frozen_motion", &SensorLimits::encoder_frozen_motion, "rad", kPositive,
      "an encoder identical for frozen_cycles while its set-point moved this far is frozen"},
+    {"recovery_time", &SensorLimits::recovery_time, "s", kNonNegative,
+     "a failed F/T sensor or IMU healthy again this long is trusted again (0: faults last the run)"},
 };
 
 const ParameterTable<WalkingControllerParams> kWalkingControllerParameters = {

@@ -193,6 +193,12 @@ nlohmann::json RunRecorder::summary(const std::string& robot, const std::string&
   j["fault"] = text_if(fault && !after_fall);
   j["fault_after_fall"] = text_if(fault && after_fall);
   j["fault_time_s"] = fault && fault_seen_ ? nlohmann::json(fault_time_) : nlohmann::json(nullptr);
+  // Failed F/T sensors or the IMU the controller trusted again once healthy (SensorLimits::recovery_time).
+  j["sensors_recovered"] = nlohmann::json::array();
+  for (int k = 0; k < final_status.recovered.count; ++k) {
+    const Fault& f = final_status.recovered.items[k];
+    j["sensors_recovered"].push_back({{"sensor", describe(f)}, {"t", f.time}});
+  }
   j["command_saturated"] = command_saturated_;
   // What the controller's sensor calibration estimated (all zero with it off).
   const auto vec = [](const Eigen::Vector3d& v, double scale) { return nlohmann::json{v.x() * scale, v.y() * scale, v.z() * scale}; };

@@ -305,10 +305,16 @@ TEST(StabilizerRobustness, NanForceReadingGivesASafeStopWithoutAFall) {
   for (const char* t : {"4.8", "5.0", "5.3", "6.0"}) {
     const Scenario scenario =
         load_scenario(test::source_path("config/scenarios/lola-ft-nan.yaml"), {std::string("sensors.faults.0.t=") + t});
-    const ScenarioResult r = run_scenario(scenario, make_run_config(scenario), "");
+    const RunConfig config = make_run_config(scenario);
+    const ScenarioResult r = run_scenario(scenario, config, "");
     EXPECT_FALSE(r.run.fell) << "fault at " << t << " s: " << r.run.fall_reason;
     EXPECT_EQ(r.summary["final_state"], "safe_stop");
     EXPECT_EQ(r.summary["fault"], "left F/T sensor");
+    // Healthy again after the one reading: trusted again after the recovery time, the stop goes on.
+    ASSERT_EQ(r.summary["sensors_recovered"].size(), 1u) << "fault at " << t << " s";
+    EXPECT_EQ(r.summary["sensors_recovered"][0]["sensor"], "left F/T sensor");
+    EXPECT_GE(r.summary["sensors_recovered"][0]["t"].get<double>(),
+              std::stod(t) + config.controller.walking.sensor_limits.recovery_time - 1e-9);
   }
 }
 
@@ -321,6 +327,7 @@ TEST(StabilizerRobustness, FrozenForceSensorGivesASafeStopWithoutAFall) {
   EXPECT_FALSE(r.run.fell) << r.run.fall_reason;
   EXPECT_EQ(r.summary["final_state"], "safe_stop");
   EXPECT_EQ(r.summary["fault"], "left F/T sensor frozen");
+  EXPECT_TRUE(r.summary["sensors_recovered"].empty()) << "frozen to the end: never trusted again";
 }
 
 }  // namespace
