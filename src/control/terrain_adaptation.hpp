@@ -52,8 +52,9 @@ class TerrainAdaptation {
   // its load.
   void step(double dt, const PatternSample& s, const std::array<Wrench, 2>& measured,
             const std::array<Wrench, 2>& desired = {}, const std::array<double, 2>& ground_above_command = {0.0, 0.0});
-  // Without trusted force readings: standing feet keep their offsets, a foot in the air goes to the
-  // other foot's ground height.
+  // Without any trusted force reading: standing feet keep their offsets, a foot in the air goes to
+  // the other foot's ground height. (With one F/T sensor failed, step() goes on: that foot's
+  // reading is the wrench asked of it, so it finds its ground where planned.)
   void hold(double dt);
 
   // Offsets of the planned heights [m] and their rates [m/s]: per foot (by Side) and of the CoM.

@@ -183,8 +183,10 @@ void WalkingController::adapt_steps(const SensorData& sensors) {
 }
 
 void WalkingController::adapt_to_terrain(const SensorData& sensors) {
-  // Finding the ground needs both F/T sensors; without them the footholds keep their heights.
-  if (params_.stabilizer && both_force_sensors()) {
+  // A foot whose F/T sensor has failed reads the wrench asked of it (detect_faults): it finds its
+  // ground where planned, the other foot still finds its own. Without any, the footholds keep
+  // their heights.
+  if (params_.stabilizer && uses_sensors()) {
     // Where each standing foot's ground is, in the frame of the commanded heights: its height
     // modification (eq. 20) and its sole's deflection under the measured load (eq. 11).
     const auto& m = stabilizer_.modification();
@@ -193,7 +195,7 @@ void WalkingController::adapt_to_terrain(const SensorData& sensors) {
                   {m[0].offset[0] + compliance * std::max(0.0, sensors.foot_wrench[0].force.z()),
                    m[1].offset[0] + compliance * std::max(0.0, sensors.foot_wrench[1].force.z())});
   }
-  if (!both_force_sensors()) terrain_.hold(params_.rmrc.dt);
+  if (!uses_sensors()) terrain_.hold(params_.rmrc.dt);
 }
 
 void WalkingController::stabilize(const SensorData& sensors) {

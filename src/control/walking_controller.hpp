@@ -85,7 +85,6 @@ class WalkingController final : public Controller {
   void publish_status();
   // The stabilizer works while one F/T sensor at least is healthy; finding the ground needs both.
   bool uses_sensors() const { return health().force_torque[0] || health().force_torque[1]; }
-  bool both_force_sensors() const { return health().force_torque[0] && health().force_torque[1]; }
   const SensorHealth& health() const { return monitor_.health(); }
 
   const RobotModel& model_;
