@@ -16,20 +16,23 @@ void TerrainAdaptation::reset() {
   com_offset_ = com_rate_ = 0.0;
 }
 
-void TerrainAdaptation::hold(double dt) {
-  // A foot that was not standing when the readings stopped being trusted goes to the height of the
-  // ground the other foot stands on, so that it lands there.
-  for (int k = 0; k < 2; ++k) {
-    Foot& foot = feet_[k];
-    if (foot.phase == Phase::Stance) {
-      foot.rate = foot.tilt_rate = 0.0;
-      continue;
+void TerrainAdaptation::follow_plan(Foot& foot, const Foot& other, const FootReference& plan,
+                                    double ground_above_command, double dt) {
+  foot.settling = false;
+  foot.tilt_rate_sign = 0.0;
+  foot.cop_error = 0.0;
+  if (plan.in_contact) {
+    if (foot.phase != Phase::Stance) {
+      foot.phase = Phase::Stance;
+      foot.planned_ground = plan.position.z();
+      foot.ground = foot.offset + ground_above_command;
     }
-    return_tilt(foot, dt);
-    const double target = feet_[1 - k].ground;
-    set_offset(foot, foot.offset + std::clamp(target - foot.offset, -kSwingSpeed * dt, kSwingSpeed * dt), dt);
+    foot.rate = foot.tilt_rate = 0.0;
+    return;
   }
-  com_rate_ = 0.0;
+  foot.phase = Phase::Swing;
+  return_tilt(foot, dt);
+  set_offset(foot, foot.offset + std::clamp(other.ground - foot.offset, -kSwingSpeed * dt, kSwingSpeed * dt), dt);
 }
 
 void TerrainAdaptation::settle(Foot& foot, int k, double dt, const Wrench& desired, bool loading) {
@@ -77,7 +80,8 @@ void TerrainAdaptation::set_offset(Foot& foot, double offset, double dt) {
 }
 
 void TerrainAdaptation::step(double dt, const PatternSample& s, const std::array<Wrench, 2>& measured,
-                             const std::array<Wrench, 2>& desired, const std::array<double, 2>& ground_above_command) {
+                             const std::array<Wrench, 2>& desired, const std::array<double, 2>& ground_above_command,
+                             const std::array<bool, 2>& trusted) {
   if (!params_.enabled) return;
   const double filter = dt / (params_.filter_time + dt);
   for (int k = 0; k < 2; ++k) {
@@ -89,6 +93,10 @@ void TerrainAdaptation::step(double dt, const PatternSample& s, const std::array
     foot.load_share = s.load_share[k];
     foot.filtered_force += filter * (measured[k].force.z() - foot.filtered_force);
     foot.filtered_torque += filter * (measured[k].torque.y() - foot.filtered_torque);
+    if (!trusted[k]) {
+      follow_plan(foot, other, plan, ground_above_command[k], dt);
+      continue;
+    }
     const bool contact = foot.filtered_force > params_.contact_force;
     const double lowest = other.ground - params_.max_step, highest = other.ground + params_.max_step;
     if (!plan.in_contact) {
@@ -144,6 +152,10 @@ void TerrainAdaptation::step(double dt, const PatternSample& s, const std::array
         settle(foot, k, dt, desired[k], loading);
       }
     }
+  }
+  if (!trusted[0] && !trusted[1]) {
+    com_rate_ = 0.0;
+    return;
   }
   const double mean_ground = 0.5 * (feet_[0].ground + feet_[1].ground);
   com_rate_ = (mean_ground - com_offset_) / params_.com_follow_time;

@@ -49,13 +49,13 @@ class TerrainAdaptation {
   // One cycle with the pattern's sample, the measured and the desired contact wrenches (λ_d of
   // eq. 10, last cycle), and where each standing foot's ground lies above its planned height plus
   // offset: force control's height modification (Δz of eq. 20) and the sole's deflection under
-  // its load.
+  // its load. A foot whose F/T reading is not `trusted` (a failed sensor) finds nothing: its phase
+  // follows the plan, standing it keeps its offset, in the air it goes to the other foot's ground
+  // height; so its state is consistent when the sensor is trusted again. Without any trusted
+  // reading the CoM height holds too.
   void step(double dt, const PatternSample& s, const std::array<Wrench, 2>& measured,
-            const std::array<Wrench, 2>& desired = {}, const std::array<double, 2>& ground_above_command = {0.0, 0.0});
-  // Without any trusted force reading: standing feet keep their offsets, a foot in the air goes to
-  // the other foot's ground height. (With one F/T sensor failed, step() goes on: that foot's
-  // reading is the wrench asked of it, so it finds its ground where planned.)
-  void hold(double dt);
+            const std::array<Wrench, 2>& desired = {}, const std::array<double, 2>& ground_above_command = {0.0, 0.0},
+            const std::array<bool, 2>& trusted = {true, true});
 
   // Offsets of the planned heights [m] and their rates [m/s]: per foot (by Side) and of the CoM.
   // A tilted foot's ankle moves with the tilt so that the edge it turned about stays in place.
@@ -91,6 +91,8 @@ class TerrainAdaptation {
   // Edge contact at touchdown: the tilt search, and the tilt's return to zero in the swing.
   void settle(Foot& foot, int k, double dt, const Wrench& desired, bool loading);
   void return_tilt(Foot& foot, double dt);
+  // A foot without a trusted F/T reading: see step().
+  void follow_plan(Foot& foot, const Foot& other, const FootReference& plan, double ground_above_command, double dt);
   static constexpr double kSwingSpeed = 0.5;  // [m/s] a swinging foot's offset moves to its target at most this fast
 
   static constexpr double kBandToStop = 0.5;  // share of cop_band inside which a started turn stops

@@ -183,19 +183,16 @@ void WalkingController::adapt_steps(const SensorData& sensors) {
 }
 
 void WalkingController::adapt_to_terrain(const SensorData& sensors) {
-  // A foot whose F/T sensor has failed reads the wrench asked of it (detect_faults): it finds its
-  // ground where planned, the other foot still finds its own. Without any, the footholds keep
-  // their heights.
-  if (params_.stabilizer && uses_sensors()) {
-    // Where each standing foot's ground is, in the frame of the commanded heights: its height
-    // modification (eq. 20) and its sole's deflection under the measured load (eq. 11).
-    const auto& m = stabilizer_.modification();
-    const double compliance = 1.0 / stabilizer_.contact_stiffness();
-    terrain_.step(params_.rmrc.dt, plan_.sample(), sensors.foot_wrench, stabilizer_.desired(),
-                  {m[0].offset[0] + compliance * std::max(0.0, sensors.foot_wrench[0].force.z()),
-                   m[1].offset[0] + compliance * std::max(0.0, sensors.foot_wrench[1].force.z())});
-  }
-  if (!uses_sensors()) terrain_.hold(params_.rmrc.dt);
+  if (!params_.stabilizer) return;
+  // Where each standing foot's ground is, in the frame of the commanded heights: its height
+  // modification (eq. 20) and its sole's deflection under the measured load (eq. 11). A foot
+  // whose F/T sensor has failed finds no ground; the other goes on finding its own.
+  const auto& m = stabilizer_.modification();
+  const double compliance = 1.0 / stabilizer_.contact_stiffness();
+  terrain_.step(params_.rmrc.dt, plan_.sample(), sensors.foot_wrench, stabilizer_.desired(),
+                {m[0].offset[0] + compliance * std::max(0.0, sensors.foot_wrench[0].force.z()),
+                 m[1].offset[0] + compliance * std::max(0.0, sensors.foot_wrench[1].force.z())},
+                health().force_torque);
 }
 
 void WalkingController::stabilize(const SensorData& sensors) {

@@ -215,6 +215,33 @@ TEST(WalkingControllerDegraded, StopsWithoutFallWhateverFails) {
   }
 }
 
+// The largest foothold height offset the terrain adaptation reports over a run.
+struct LargestFootholdOffset final : public RunObserver {
+  double largest = 0.0;
+  void record(const Simulation&, const SensorData&, const JointCommand&, const ControllerStatus& status,
+              double) override {
+    for (double offset : status.foot_height_offset) largest = std::max(largest, std::abs(offset));
+  }
+};
+
+// A transient F/T fault (frozen for 0.5 s) at several phases of the gait on flat ground: while the
+// foot reads the wrench asked of it the terrain adaptation goes on, and once the sensor is trusted
+// again it resumes from a consistent contact state, so the footholds stay at the ground's height
+// (holding the estimate and resuming with the contact state of the fault's start moved a foothold
+// by centimetres) and the robot stops without a fall.
+TEST(WalkingControllerDegraded, FootholdsStayOnTheGroundThroughATransientForceSensorFault) {
+  for (const char* t : {"4.8", "5.2", "5.6"}) {
+    const Scenario scenario =
+        load_scenario(test::source_path("config/scenarios/lola-ft-frozen.yaml"),
+                      {"duration=9", std::string("sensors.faults=[{t: ") + t + ", sensor: ft_right, value: freeze, duration: 0.5}]"});
+    LargestFootholdOffset observer;
+    const ScenarioResult r = run_scenario(scenario, make_run_config(scenario), "", &observer);
+    EXPECT_FALSE(r.summary["fell"].get<bool>()) << "fault at " << t;
+    EXPECT_EQ(r.summary["sensors_recovered"].size(), 1u) << "fault at " << t;
+    EXPECT_LT(observer.largest, 0.01) << "fault at " << t;
+  }
+}
+
 TEST_P(WalkingControllerTest, ACycleAllocatesNothing) {
   KinematicLoop loop(GetParam());
   WalkCommand walk;
