@@ -185,6 +185,33 @@ TEST(TerrainAdaptation, AStartedTurnGoesOnToHalfTheBand) {
   EXPECT_DOUBLE_EQ(turn_for(40), 0.0) << "stopped";
 }
 
+// A foot whose F/T sensor has failed (not trusted) finds nothing from its reading: at a planned
+// touchdown without load it does not search down, it stands where planned; in the air it goes to
+// the other foot's ground; when trusted again in the air, it lands like any foot. The other foot
+// goes on finding its ground.
+TEST(TerrainAdaptation, AFootWithoutATrustedReadingFollowsThePlan) {
+  TerrainAdaptationParams params;
+  TerrainAdaptation terrain(test::load_model("lola"), params);
+  const std::array<bool, 2> left_failed{false, true};
+  const std::array<double, 2> standing{0.0, 0.0};
+  PatternSample s;
+  s.feet[0].in_contact = false;
+  // The right foot stands 1.5 cm above the plan's ground (found from its trusted reading).
+  for (int i = 0; i < 100; ++i) terrain.step(kDt, s, loads(-10.0, 500.0), {}, {0.0, 0.015}, left_failed);
+  EXPECT_NEAR(terrain.ground_height(1), 0.015, 1e-12);
+  EXPECT_NEAR(terrain.foot_offset(0), 0.015, 1e-9) << "in the air: to the other foot's ground";
+  s.feet[0].in_contact = true;
+  for (int i = 0; i < 500; ++i) terrain.step(kDt, s, loads(-10.0, 500.0), {}, standing, left_failed);
+  EXPECT_NEAR(terrain.foot_offset(0), 0.015, 1e-9) << "no search from a reading that is not trusted";
+  EXPECT_NEAR(terrain.ground_height(0), 0.015, 1e-9);
+  // Trusted again, in the air over ground 1 cm lower than it thinks: a late contact searches.
+  s.feet[0].in_contact = false;
+  for (int i = 0; i < 50; ++i) terrain.step(kDt, s, loads(-10.0, 500.0), {}, {0.0, 0.015});
+  s.feet[0].in_contact = true;
+  for (int i = 0; i < 200; ++i) terrain.step(kDt, s, loads(-10.0, 500.0), {}, standing);
+  EXPECT_LT(terrain.foot_offset(0), 0.015 - 0.01) << "searching again";
+}
+
 // The largest foothold height offset the adaptation reports over a run.
 struct LargestOffset final : public RunObserver {
   double largest = 0.0;
