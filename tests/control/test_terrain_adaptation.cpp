@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "foothold_observer.hpp"
 #include "io/robot_config.hpp"
 #include "io/scenario.hpp"
 #include "studies/scenario_runner.hpp"
@@ -212,15 +213,6 @@ TEST(TerrainAdaptation, AFootWithoutATrustedReadingFollowsThePlan) {
   EXPECT_LT(terrain.foot_offset(0), 0.015 - 0.01) << "searching again";
 }
 
-// The largest foothold height offset the adaptation reports over a run.
-struct LargestOffset final : public RunObserver {
-  double largest = 0.0;
-  void record(const Simulation&, const SensorData&, const JointCommand&, const ControllerStatus& status,
-              double) override {
-    for (double offset : status.foot_height_offset) largest = std::max(largest, std::abs(offset));
-  }
-};
-
 // On flat ground the footholds' estimated heights stay at the ground's: no step may add a bias
 // (a foot landing on time takes load only some 25 ms after the planned touchdown; a loaded sole is
 // deflected). LOLA walks 20 s at 0.6 m/s, about 40 footholds; a bias of 1 mm per step, as before
@@ -228,7 +220,7 @@ struct LargestOffset final : public RunObserver {
 // realistic sensor errors the footholds drift by 4.7 cm in this walk (README "Status").
 TEST(TerrainAdaptation, FlatGroundFootholdsStayAtTheGroundsHeight) {
   const Scenario s = load_scenario(test::source_path("config/scenarios/lola-walk.yaml"), {"sensors.ideal=true"});
-  LargestOffset observer;
+  test::LargestFootholdOffset observer;
   const ScenarioResult result = run_scenario(s, make_run_config(s), "", &observer);
   ASSERT_FALSE(result.run.fell);
   EXPECT_LT(observer.largest, 0.005);

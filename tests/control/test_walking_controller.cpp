@@ -11,6 +11,7 @@
 #include <limits>
 
 #include "apps/allocation_counter.hpp"
+#include "foothold_observer.hpp"
 #include "io/robot_config.hpp"
 #include "io/scenario.hpp"
 #include "kinematic_loop.hpp"
@@ -215,15 +216,6 @@ TEST(WalkingControllerDegraded, StopsWithoutFallWhateverFails) {
   }
 }
 
-// The largest foothold height offset the terrain adaptation reports over a run.
-struct LargestFootholdOffset final : public RunObserver {
-  double largest = 0.0;
-  void record(const Simulation&, const SensorData&, const JointCommand&, const ControllerStatus& status,
-              double) override {
-    for (double offset : status.foot_height_offset) largest = std::max(largest, std::abs(offset));
-  }
-};
-
 // A transient F/T fault (frozen for 0.5 s) at several phases of the gait on flat ground: while the
 // foot reads the wrench asked of it the terrain adaptation goes on, and once the sensor is trusted
 // again it resumes from a consistent contact state, so the footholds stay at the ground's height
@@ -234,7 +226,7 @@ TEST(WalkingControllerDegraded, FootholdsStayOnTheGroundThroughATransientForceSe
     const Scenario scenario =
         load_scenario(test::source_path("config/scenarios/lola-ft-frozen.yaml"),
                       {"duration=9", std::string("sensors.faults=[{t: ") + t + ", sensor: ft_right, value: freeze, duration: 0.5}]"});
-    LargestFootholdOffset observer;
+    test::LargestFootholdOffset observer;
     const ScenarioResult r = run_scenario(scenario, make_run_config(scenario), "", &observer);
     EXPECT_FALSE(r.summary["fell"].get<bool>()) << "fault at " << t;
     EXPECT_EQ(r.summary["sensors_recovered"].size(), 1u) << "fault at " << t;
