@@ -17,6 +17,13 @@ void StepAdaptation::idle() {
   rate_.setZero();
 }
 
+double StepAdaptation::max_next_step_time() const {
+  if (!params_.enabled || params_.quick_step_time <= 0.0 || !dcm_error_.allFinite()) return 0.0;
+  const Eigen::Vector2d beyond(std::max(0.0, std::abs(dcm_error_.x()) - params_.dead_band_forward),
+                               std::max(0.0, std::abs(dcm_error_.y()) - params_.dead_band_sideways));
+  return beyond.norm() > params_.quick_step_error ? params_.quick_step_time : 0.0;
+}
+
 void StepAdaptation::update(double dt, const StepAdaptationInput& in) {
   const double omega = std::sqrt(in.gravity / in.com_height);
   dcm_error_ = (in.measured_com - in.planned_com) + (in.measured_com_rate - in.planned_com_rate) / omega;

@@ -153,6 +153,7 @@ void WalkingController::adapt_steps(const SensorData& sensors) {
   if (swing < 0 || !estimate || plan_.num_planned_steps() == 0) {
     step_adaptation_.idle();
     plan_.shift_landing(Eigen::Vector2d::Zero(), Eigen::Vector2d::Zero());
+    plan_.limit_next_step_time(0.0);
     return;
   }
   const FootReference& stance = s.feet[1 - swing];
@@ -180,6 +181,7 @@ void WalkingController::adapt_steps(const SensorData& sensors) {
   step_adaptation_.update(params_.rmrc.dt, in);
   const Eigen::Matrix2d to_world = to_heading.transpose();
   plan_.shift_landing(to_world * step_adaptation_.shift(), to_world * step_adaptation_.shift_rate());
+  plan_.limit_next_step_time(step_adaptation_.max_next_step_time());
 }
 
 void WalkingController::adapt_to_terrain(const SensorData& sensors) {

@@ -29,6 +29,7 @@ void WalkingPlan::reset(const std::array<Footstep, 2>& feet, const Eigen::Vector
   landing_shift_.setZero();
   landing_shift_rate_.setZero();
   measured_valid_ = false;
+  max_next_step_time_ = 0.0;
   replans_from_measured_ = 0;
   step_ = params_.step;
   step_.com_height = com.z();
@@ -117,7 +118,9 @@ void WalkingPlan::replan(double t, StepDecision decision, const VelocityCommand&
       ++replans_from_measured_;
     }
   }
-  const StepParameters step = params_.table.lookup(decision == StepDecision::StopStep ? 0.0 : v.vx, step_);
+  StepParameters step = params_.table.lookup(decision == StepDecision::StopStep ? 0.0 : v.vx, step_);
+  const bool at_touchdown = decision == StepDecision::Continue || decision == StepDecision::StopStep;
+  if (at_touchdown && max_next_step_time_ > 0.0) step.step_time = std::min(step.step_time, max_next_step_time_);
   switch (decision) {
     case StepDecision::StartWalk: {
       // Step first with the foot on the side the robot moves or turns to.

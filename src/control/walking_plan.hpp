@@ -39,6 +39,9 @@ class WalkingPlan {
   // adaptation): the swing foot's reference gains s·shift (s: the swing's progress) and the rate
   // ṡ·shift + s·shift_rate, and at touchdown the foothold is the shifted one. Cleared at touchdown.
   void shift_landing(const Eigen::Vector2d& shift, const Eigen::Vector2d& shift_rate);
+  // Step timing (step adaptation): the steps planned at the next touchdown last at most
+  // `max_step_time` [s] each (0: the table's step time). Set every cycle.
+  void limit_next_step_time(double max_step_time) { max_next_step_time_ = max_step_time; }
   // The robot's CoM as the state estimate has it (controller frame) and its velocity: the next
   // replanning at a touchdown starts from it instead of the plan's own state when they differ by
   // more than `threshold` [m] (position plus velocity / ω₀). `valid` false: from the plan's state.
@@ -77,6 +80,7 @@ class WalkingPlan {
   Eigen::Vector2d landing_shift_ = Eigen::Vector2d::Zero(), landing_shift_rate_ = Eigen::Vector2d::Zero();
   Eigen::Vector2d measured_com_ = Eigen::Vector2d::Zero(), measured_com_velocity_ = Eigen::Vector2d::Zero();
   double replan_threshold_ = 0.0;
+  double max_next_step_time_ = 0.0;
   bool measured_valid_ = false;
   int replans_from_measured_ = 0;
   bool command_saturated_ = false;

@@ -274,6 +274,10 @@ const ParameterTable<StepAdaptationParams> kStepAdaptationParameters = {
      "step adaptation: at a touchdown, replan from the measured CoM when the DCMs differ by more than replan_threshold"},
     {"replan_threshold", &StepAdaptationParams::replan_threshold, "m", kNonNegative,
      "step adaptation with replan: the DCM difference beyond which a touchdown replans from the measured CoM"},
+    {"quick_step_time", &StepAdaptationParams::quick_step_time, "s", kNonNegative,
+     "step timing: the steps planned at a touchdown after a large DCM error last at most this (0: off)"},
+    {"quick_step_error", &StepAdaptationParams::quick_step_error, "m", kNonNegative,
+     "step timing: DCM error beyond the dead band at the end of a swing that makes the next steps quick"},
 };
 
 ParameterSection simulation_section(SimulationParams& p) {

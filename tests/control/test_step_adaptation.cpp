@@ -195,5 +195,31 @@ TEST(StepAdaptation, NonFiniteStateLeavesTheShiftAsItWas) {
   EXPECT_TRUE(adaptation.shift_rate().allFinite());
 }
 
+// Step timing: quick steps only for an error beyond the dead band by more than quick_step_error,
+// along either axis or both together; never when switched off.
+TEST(StepAdaptation, QuickStepsOnlyForAnErrorBeyondTheDeadBandAndTheThreshold) {
+  StepAdaptationParams params;  // the defaults: dead bands 0.06 / 0.04 m, threshold 0.05 m
+  params.quick_step_time = 0.6;
+  StepAdaptationInput in = mid_swing();
+  const auto next_step_time = [&](const StepAdaptationParams& p, Eigen::Vector2d error) {
+    StepAdaptation adaptation{p};
+    in.measured_com = error;
+    adaptation.update(kDt, in);
+    return adaptation.max_next_step_time();
+  };
+  EXPECT_EQ(next_step_time(params, {0.0, 0.0}), 0.0);
+  EXPECT_EQ(next_step_time(params, {0.10, 0.0}), 0.0);   // 0.04 beyond the band
+  EXPECT_EQ(next_step_time(params, {0.0, -0.085}), 0.0);  // 0.045 beyond
+  EXPECT_EQ(next_step_time(params, {0.12, 0.0}), params.quick_step_time);
+  EXPECT_EQ(next_step_time(params, {0.0, -0.10}), params.quick_step_time);
+  EXPECT_EQ(next_step_time(params, {-0.10, 0.08}), params.quick_step_time);  // (0.04, 0.04): 0.057
+  StepAdaptationParams off = params;
+  off.quick_step_time = 0.0;
+  EXPECT_EQ(next_step_time(off, {0.0, -0.2}), 0.0);
+  StepAdaptationParams disabled = params;
+  disabled.enabled = false;
+  EXPECT_EQ(next_step_time(disabled, {0.0, -0.2}), 0.0);
+}
+
 }  // namespace
 }  // namespace biped

@@ -262,6 +262,30 @@ TEST(WalkingPlan, StopPutsTheFeetSideBySideAndStands) {
   EXPECT_EQ(f.plan.steps_completed(), steps);
 }
 
+// Step timing: a limit set before a touchdown shortens the steps planned there, and only those;
+// the steps after it keep the step time. The step under way is not touched.
+TEST(WalkingPlan, LimitedStepTimeShortensTheStepsPlannedAtTheNextTouchdown) {
+  PlanFixture f;
+  f.run(4.0, walk(0.3));
+  ASSERT_EQ(f.plan.state(), WalkingState::Walking);
+  const double quick = 0.5;
+  ASSERT_LT(quick, f.step_time());
+  const double under_way = f.plan.planned_step(0).touchdown;
+  const std::size_t before = f.touchdowns.size();
+  f.plan.limit_next_step_time(quick);
+  while (f.touchdowns.size() == before) f.run(f.t + kDt, walk(0.3));
+  EXPECT_NEAR(f.touchdowns.back().t, under_way, kDt);
+  ASSERT_EQ(f.plan.num_planned_steps(), 3);
+  EXPECT_NEAR(f.plan.planned_step(0).touchdown - f.touchdowns.back().t, quick, 2 * kDt);
+  EXPECT_NEAR(f.plan.planned_step(1).touchdown - f.plan.planned_step(0).touchdown, quick, 1e-9);
+
+  f.plan.limit_next_step_time(0.0);
+  const double quick_touchdown = f.plan.planned_step(0).touchdown;
+  while (f.touchdowns.size() == before + 1) f.run(f.t + kDt, walk(0.3));
+  EXPECT_NEAR(f.touchdowns.back().t, quick_touchdown, kDt);
+  EXPECT_NEAR(f.plan.planned_step(0).touchdown - f.touchdowns.back().t, f.step_time(), 2 * kDt);
+}
+
 // A safe stop in mid-swing: the step under way lands where it was planned, one more step puts the
 // feet side by side, and no step follows, whatever the command says.
 TEST(WalkingPlan, SafeStopFinishesTheStepTakesOneMoreAndStands) {
