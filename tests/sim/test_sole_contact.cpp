@@ -138,17 +138,25 @@ TEST(SoleContact, StiffnessByPointAreaFollowsThePatchAreas) {
   EXPECT_LT(tilt_area, 0.8 * tilt_equal);
 }
 
+// A free 20 kg box named "foot" without MuJoCo contacts (`box`: its geom's placement and size),
+// written into a fresh folder and loaded; nullptr with the loader's message in `error`.
+mjModel* free_box_model(const char* folder, const std::string& box, std::string& error) {
+  const std::string file = (test::fresh_dir(folder) / "foot.xml").string();
+  std::ofstream(file) << "<mujoco><option timestep=\"0.001\"/><worldbody><body name=\"foot\"><freejoint/>"
+                         "<geom type=\"box\" " << box << " mass=\"20\" contype=\"0\" conaffinity=\"0\"/>"
+                         "</body></worldbody></mujoco>";
+  char message[500] = "";
+  mjModel* m = mj_loadXML(file.c_str(), nullptr, message, sizeof(message));
+  error = message;
+  return m;
+}
+
 // The damping acts on each point's own velocity, also where the body's centre of mass is far from
 // its frame's origin (a foot rocking about x on its sole, its mass 0.1 m above and 0.08 m beside the
 // sole's centre).
 TEST(SoleContact, DampingActsOnThePointsOwnVelocity) {
-  const auto dir = test::fresh_dir("offset-foot");
-  const std::string file = (dir / "foot.xml").string();
-  std::ofstream(file) << "<mujoco><option timestep=\"0.001\"/><worldbody><body name=\"foot\">"
-                         "<freejoint/><geom type=\"box\" pos=\"0 0.08 0.1\" size=\"0.1 0.05 0.02\" mass=\"20\""
-                         " contype=\"0\" conaffinity=\"0\"/></body></worldbody></mujoco>";
-  char error[500] = "";
-  mjModel* m = mj_loadXML(file.c_str(), nullptr, error, sizeof(error));
+  std::string error;
+  mjModel* m = free_box_model("offset-foot", "pos=\"0 0.08 0.1\" size=\"0.1 0.05 0.02\"", error);
   ASSERT_NE(m, nullptr) << error;
   mjData* d = mj_makeData(m);
   d->qpos[2] = -0.001;  // the sole (at the body's origin) 1 mm deep
@@ -183,13 +191,8 @@ struct LooseFoot {
   mjData* d = nullptr;
   std::unique_ptr<SoleContact> contact;
   explicit LooseFoot(double x, std::vector<TerrainFeature> terrain, double z = 0.0) {
-    const auto dir = test::fresh_dir("loose-foot");
-    const std::string file = (dir / "foot.xml").string();
-    std::ofstream(file) << "<mujoco><option timestep=\"0.001\"/><worldbody><body name=\"foot\">"
-                           "<freejoint/><geom type=\"box\" size=\"0.1 0.05 0.02\" mass=\"20\" contype=\"0\""
-                           " conaffinity=\"0\"/></body></worldbody></mujoco>";
-    char error[500] = "";
-    m = mj_loadXML(file.c_str(), nullptr, error, sizeof(error));
+    std::string error;
+    m = free_box_model("loose-foot", "size=\"0.1 0.05 0.02\"", error);
     EXPECT_NE(m, nullptr) << error;
     d = mj_makeData(m);
     d->qpos[0] = x;
