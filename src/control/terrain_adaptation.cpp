@@ -135,6 +135,13 @@ void TerrainAdaptation::step(double dt, const PatternSample& s, const std::array
         foot.phase = contact ? Phase::Stance : Phase::Searching;
         foot.search_time = 0.0;
       }
+      // A foot that loses its contact again before it found its support (it met the ground on one
+      // edge and bounced off) while the plan shifts load onto it searches again: position control
+      // alone would leave it hanging where it first touched.
+      if (foot.phase == Phase::Stance && foot.settling && !contact && desired[k].force.z() > params_.contact_force) {
+        foot.phase = Phase::Searching;
+        foot.search_time = 0.0;
+      }
       if (foot.phase == Phase::Searching) {
         foot.search_time += dt;
         if (contact || foot.offset <= lowest) {

@@ -4,8 +4,9 @@
 // ground really is:
 //  - early contact: a swing foot that meets the ground while descending stops there (its height is
 //    latched while the plan would move it further down);
-//  - late contact: a foot that finds no ground at the planned touchdown keeps descending at a search
-//    speed until it does;
+//  - late contact: a foot that finds no ground at the planned touchdown, or loses it again (it met
+//    the ground on one edge and bounced off) before it has found its support while the plan shifts
+//    load onto it, descends at a search speed until it does;
 //  - partial support: a foot that has just touched down and cannot put its centre of pressure where
 //    the stabilizer asks (the measured one stays more than a band behind or ahead of it, e.g. on a
 //    step edge with the front of the sole over the lower level) turns about its present centre of

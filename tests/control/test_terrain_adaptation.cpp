@@ -110,6 +110,48 @@ TEST(TerrainAdaptation, ABrushOfTheGroundIsNotAFoothold) {
   EXPECT_NEAR(terrain.foot_offset_rate(0), -params.search_speed, 1e-9);
 }
 
+// A foot that meets the ground on one edge of its sole (its toe, on an uphill slope) just before the
+// planned touchdown, is held there and bounces off: while the plan shifts load onto it, it searches
+// down again from where it touched; without load asked of it, it waits. So does a foot that landed
+// on time and bounced off.
+TEST(TerrainAdaptation, AFootThatBouncesOffBeforeItFoundItsSupportSearchesAgain) {
+  TerrainAdaptationParams params;
+  const int delay = static_cast<int>(std::lround(params.search_delay / kDt));
+  struct Case {
+    bool early;
+    double asked;
+    bool searches;
+  };
+  for (const Case c : {Case{true, 0.0, false}, Case{true, 300.0, true}, Case{false, 300.0, true}}) {
+    TerrainAdaptation terrain(test::load_model("lola"), params);
+    LeftFootDescending left;
+    left.descend(terrain, c.early ? 50 : 100, -10.0, 500.0);
+    if (c.early) left.descend(terrain, 50, 200.0, 500.0);  // the touch, 2.5 cm above the plan's ground
+    left.sample.feet[0].in_contact = true;
+    left.sample.load_share = {0.0, 1.0};
+    for (int i = 0; i < 5; ++i) terrain.step(kDt, left.sample, loads(200.0, 500.0));  // touchdown, the sole on the ground
+    const double held = terrain.foot_offset(0);
+    if (c.early) {
+      EXPECT_GT(held, 0.005);
+    }
+    // The double support after touchdown: the plan's share of the load on the left foot grows.
+    std::array<Wrench, 2> desired = loads(c.asked, 500.0 - c.asked);
+    for (int i = 0; i < delay + 30; ++i) {
+      left.sample.load_share = {std::min(1.0, 0.01 * (i + 1)), std::max(0.0, 1.0 - 0.01 * (i + 1))};
+      terrain.step(kDt, left.sample, loads(-10.0, 500.0), desired);
+    }
+    if (c.searches) {
+      EXPECT_LT(terrain.foot_offset(0), held - 0.004) << "searching down from where it touched";
+      EXPECT_NEAR(terrain.foot_offset_rate(0), -params.search_speed, 1e-9);
+      for (int i = 0; i < 20; ++i) terrain.step(kDt, left.sample, loads(300.0, 200.0), desired);
+      EXPECT_DOUBLE_EQ(terrain.foot_offset_rate(0), 0.0) << "stops once the ground is felt";
+      EXPECT_LT(terrain.ground_height(0), held - 0.004);
+    } else {
+      EXPECT_DOUBLE_EQ(terrain.foot_offset(0), held) << "early " << c.early << ", asked " << c.asked << " N: no search";
+    }
+  }
+}
+
 // A foot lands with the front of its sole over a lower level: while the load shifts onto it, the
 // measured centre of pressure stays behind the desired one, so the foot turns toes down about it
 // until it is found; a foot whose centre of pressure follows (flat ground) does not turn.

@@ -95,12 +95,12 @@ TEST(GainTuning, ImprovesADetunedGainSetOnTrainingAndHeldOutRuns) {
   const fs::path dir = test::fresh_dir("tune-detuned");
   TuningOptions options;
   options.robot = "lola";
-  options.campaign = short_push_campaign(dir).string();
+  options.campaign = short_push_campaign(dir, 8).string();
   options.from = detuned_gains(dir).string();
   options.parameters = rows({"controller.stabilization.tilt_gain", "controller.stabilization.tilt_rate_gain",
                              "controller.stabilization.force_gain"});
-  options.budget = 4 * (1 + 2 * tuning_population(3));  // the start and two generations
-  options.heldout_runs = 8;
+  options.budget = 8 * (1 + 2 * tuning_population(3));  // the start and two generations
+  options.heldout_runs = 16;
   const nlohmann::json r = run_gain_tuning(options, (dir / "out").string());
 
   EXPECT_EQ(r["generations"], 2);
@@ -110,9 +110,9 @@ TEST(GainTuning, ImprovesADetunedGainSetOnTrainingAndHeldOutRuns) {
   EXPECT_LT(r["objective"]["tuned_falls"].get<long>(), r["objective"]["start_falls"].get<long>());
   const nlohmann::json& start = r["heldout"]["start"];
   const nlohmann::json& tuned = r["heldout"]["tuned"];
-  EXPECT_EQ(start["completed"], 8);
-  EXPECT_EQ(tuned["completed"], 8);
-  EXPECT_GE(start["falls"].get<long>(), 4) << "the detuned set should fall in most held-out runs";
+  EXPECT_EQ(start["completed"], 16);
+  EXPECT_EQ(tuned["completed"], 16);
+  EXPECT_GE(start["falls"].get<long>(), 8) << "the detuned set should fall in most held-out runs";
   EXPECT_LE(2 * tuned["falls"].get<long>(), start["falls"].get<long>()) << r["heldout"].dump();
 
   // Every candidate stays inside its bounds; the gain file holds the best one and nothing else.

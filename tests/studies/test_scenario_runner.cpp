@@ -152,13 +152,14 @@ TEST(RunScenario, BadInputCreatesNoOutput) {
 }
 
 // A third robot through its robot file alone (config/robots/jvrc1.yaml): JVRC-1 stands up and walks
-// at 0.5 m/s with realistic sensors under the stabilizer; in open loop the same walk falls.
+// at 0.5 m/s for 30 s with realistic sensors under the stabilizer, its upper body's tilt RMS below
+// 1° (the goal of the issue that brought it); in open loop the same walk falls.
 TEST(RunScenario, Jvrc1WalksUnderTheSameControllerWhereTheOpenLoopFalls) {
   const std::string straight = test::source_path("config/scenarios/jvrc1-straight.yaml");
-  const Scenario on = load_scenario(straight, {"duration=12"});
+  const Scenario on = load_scenario(straight, {"duration=31.5"});
   const nlohmann::json walked = run_scenario(on, make_run_config(on), "").summary;
   EXPECT_FALSE(walked["fell"].get<bool>()) << walked["fall_reason"];
-  EXPECT_GT(walked["distance_m"].get<double>(), 4.0);
+  EXPECT_GT(walked["distance_m"].get<double>(), 14.0);
   EXPECT_LT(walked["upper_body_tilt_deg"]["rms_x"].get<double>(), 1.0);
   EXPECT_LT(walked["upper_body_tilt_deg"]["rms_y"].get<double>(), 1.0);
 
