@@ -56,11 +56,13 @@ void TaskReference::update(const PatternSample& s, const TerrainAdaptation& terr
     xdot_id_.segment<3>(L.foot_position[k]) = foot.velocity - s.com_velocity;
     x_id_[L.foot_position[k] + 2] += terrain.foot_offset(k) - terrain.com_offset();
     xdot_id_[L.foot_position[k] + 2] += terrain.foot_offset_rate(k) - terrain.com_offset_rate();
-    // The terrain adaptation's tilt is about the foot's lateral axis, turned into the heading frame.
-    const Eigen::Vector3d tilt_axis = yaw_rotation(math::wrap_angle(foot.yaw - s.heading)) * Eigen::Vector3d::UnitY();
-    x_id_.segment<3>(L.foot_orientation[k]) = terrain.foot_tilt(k) * tilt_axis;
+    // The terrain adaptation's tilt is about the foot's lateral axis, its roll about the forward
+    // axis, turned into the heading frame.
+    const Eigen::Matrix3d to_heading = yaw_rotation(math::wrap_angle(foot.yaw - s.heading));
+    x_id_.segment<3>(L.foot_orientation[k]) = to_heading * Eigen::Vector3d(terrain.foot_roll(k), terrain.foot_tilt(k), 0.0);
     x_id_[L.foot_orientation[k] + 2] = math::wrap_angle(foot.yaw - s.heading);
-    xdot_id_.segment<3>(L.foot_orientation[k]) = terrain.foot_tilt_rate(k) * tilt_axis;
+    xdot_id_.segment<3>(L.foot_orientation[k]) =
+        to_heading * Eigen::Vector3d(terrain.foot_roll_rate(k), terrain.foot_tilt_rate(k), 0.0);
     xdot_id_[L.foot_orientation[k] + 2] = foot.yaw_rate - s.heading_rate;
     // Arms swing against the legs: the right arm forward with the left leg.
     const double swing = side == Side::Right ? s.arm_swing : -s.arm_swing;

@@ -14,10 +14,20 @@
 //    tilt holds for that stance and returns to zero in the swing;
 //  - the foot's height at touchdown is the ground height of that foothold; the next swing foot aims
 //    at the ground height of the stance foot, and the CoM height follows the mean ground height of
-//    the footholds, so the legs keep their planned length.
+//    the footholds, so the legs keep their planned length;
+//  - downhill slopes: the orientation a standing foot is commanded to (the slope it took, its tilt,
+//    force control's turn of eq. 20) while its centre of pressure is inside the sole, so that the
+//    sole lies flat, is the ground's slope there. Where that slope descends from the stance foot
+//    and the footholds' heights agree with it, the swing foot turns to it and aims at the height
+//    it gives. (Aiming at the stance foot's
+//    height, LOLA's feet landed late on a 4° downhill slope, heel first, behind the CoM: each
+//    touchdown added some 5 cm to the DCM error, the stabilizer asked for the centre of pressure
+//    at the toe, the heel lifted, and it fell within a few steps.)
 // The outputs are height offsets added to the feet's and the CoM's planned heights, and tilts added
 // to the feet's planned orientations in eq. (21); force control (eq. 20) acts on top of them.
 #include <array>
+
+#include <Eigen/Core>
 
 #include "math/wrench.hpp"
 #include "model/robot_model.hpp"
@@ -40,6 +50,12 @@ struct TerrainAdaptationParams {
   double cop_filter_time = 0.03;  // [s] first-order filter of that distance
   double tilt_search_speed = 0.5; // [rad/s] turn of a foot in edge contact about that edge
   double max_tilt = 0.15;         // [rad] bound of a foot's tilt
+  bool predict_slope = true;      // downhill, the swing foot takes the stance foot's ground slope (above)
+  double min_slope = 0.02;        // [rad] shallower slopes are taken for level ground
+  double max_slope = 0.1;         // [rad] bound of that slope
+  // [m] the slope is taken if the height it gives between the last two footholds is within this
+  // (plus half the height itself) of their estimated heights' difference
+  double slope_tolerance = 0.005;
 };
 
 class TerrainAdaptation {
@@ -53,18 +69,27 @@ class TerrainAdaptation {
   // its load. A foot whose F/T reading is not `trusted` (a failed sensor) finds nothing: its phase
   // follows the plan, standing it keeps its offset, in the air it goes to the other foot's ground
   // height; so its state is consistent when the sensor is trusted again. Without any trusted
-  // reading the CoM height holds too.
+  // reading the CoM height holds too. `turn_above_command`: force control's turn of each foot
+  // (φ_x, φ_y of eq. 20's Δx_λ) [rad].
   void step(double dt, const PatternSample& s, const std::array<Wrench, 2>& measured,
             const std::array<Wrench, 2>& desired = {}, const std::array<double, 2>& ground_above_command = {0.0, 0.0},
-            const std::array<bool, 2>& trusted = {true, true});
+            const std::array<bool, 2>& trusted = {true, true},
+            const std::array<Eigen::Vector2d, 2>& turn_above_command = {Eigen::Vector2d::Zero(), Eigen::Vector2d::Zero()});
 
   // Offsets of the planned heights [m] and their rates [m/s]: per foot (by Side) and of the CoM.
   // A tilted foot's ankle moves with the tilt so that the edge it turned about stays in place.
   double foot_offset(int k) const { return feet_[k].offset + feet_[k].pivot * feet_[k].tilt; }
   double foot_offset_rate(int k) const { return feet_[k].rate + feet_[k].pivot * feet_[k].tilt_rate; }
-  // Tilt of each foot about its lateral axis (positive: toes down) [rad] and its rate [rad/s].
-  double foot_tilt(int k) const { return feet_[k].tilt; }
-  double foot_tilt_rate(int k) const { return feet_[k].tilt_rate; }
+  // Tilt of each foot about its lateral axis (positive: toes down) [rad] and its rate [rad/s]:
+  // the slope it takes and its turn about an edge.
+  double foot_tilt(int k) const { return feet_[k].tilt + feet_[k].slope.y(); }
+  double foot_tilt_rate(int k) const { return feet_[k].tilt_rate + feet_[k].slope_rate.y(); }
+  // Roll of each foot about its forward axis (positive: its left edge up) [rad] and its rate [rad/s].
+  double foot_roll(int k) const { return feet_[k].slope.x(); }
+  double foot_roll_rate(int k) const { return feet_[k].slope_rate.x(); }
+  // The ground's gradient (∂z/∂x, ∂z/∂y, world frame) under each foot's current or last foothold,
+  // where its sole last lay flat.
+  const Eigen::Vector2d& ground_gradient(int k) const { return feet_[k].ground_gradient; }
   double com_offset() const { return com_offset_; }
   double com_offset_rate() const { return com_rate_; }
   // Estimated ground height under each foothold, relative to the ground the plan assumes.
@@ -87,11 +112,25 @@ class TerrainAdaptation {
     double tilt_rate_sign = 0.0;   // direction of this stance's tilt search (0: not started)
     double cop_error = 0.0;        // desired − measured x of the centre of pressure, filtered [m]
     double load_share = 0.0;       // the plan's share of the load, last cycle
+    double filtered_roll_torque = 0.0;  // T_x, filtered like the force
+    Eigen::Vector2d slope = Eigen::Vector2d::Zero(), slope_rate = Eigen::Vector2d::Zero();  // (roll, pitch) taken
+    Eigen::Vector2d ground_gradient = Eigen::Vector2d::Zero();  // ∂z/∂x, ∂z/∂y of the ground under it, world frame
+    Eigen::Vector2d position = Eigen::Vector2d::Zero();  // planned x, y of the current or last foothold [m]
   };
   void set_offset(Foot& foot, double offset, double dt);
   // Edge contact at touchdown: the tilt search, and the tilt's return to zero in the swing.
   void settle(Foot& foot, int k, double dt, const Wrench& desired, bool loading);
   void return_tilt(Foot& foot, double dt);
+  // Standing: the ground's slope from the foot's orientation, while its sole lies flat.
+  void measure_slope(Foot& foot, int k, double yaw, const Eigen::Vector2d& turn_above_command);
+  // In the air: the slope the foot turns to, and the ground height it aims at (`target`, the stance
+  // foot's ground on entry), from the stance foot's slope.
+  void take_slope(Foot& foot, const Foot& stance, const FootReference& plan, double dt, double& target);
+  // The swing foot's (roll, pitch) moves to `goal`.
+  static void turn_to_slope(Foot& foot, const Eigen::Vector2d& goal, double dt);
+  // A centre of pressure this far inside the sole's edges means the sole lies flat [m].
+  static constexpr double kFlatSoleMargin = 0.02;
+  static constexpr double kSlopeAgreement = 0.5;  // share of the slope's height the footholds' heights may lag
   // A foot without a trusted F/T reading: see step().
   void follow_plan(Foot& foot, const Foot& other, const FootReference& plan, double ground_above_command, double dt);
   static constexpr double kSwingSpeed = 0.5;  // [m/s] a swinging foot's offset moves to its target at most this fast
@@ -101,6 +140,7 @@ class TerrainAdaptation {
 
   TerrainAdaptationParams params_;
   std::array<double, 2> heel_x_{}, toe_x_{};  // sole edges per foot (sensor frame) [m]
+  std::array<double, 2> right_y_{}, left_y_{};  // the soles' right and left edges (sensor frame) [m]
   std::array<Foot, 2> feet_;
   double com_offset_ = 0.0, com_rate_ = 0.0;
 };

@@ -194,7 +194,7 @@ void WalkingController::adapt_to_terrain(const SensorData& sensors) {
   terrain_.step(params_.rmrc.dt, plan_.sample(), sensors.foot_wrench, stabilizer_.desired(),
                 {m[0].offset[0] + compliance * std::max(0.0, sensors.foot_wrench[0].force.z()),
                  m[1].offset[0] + compliance * std::max(0.0, sensors.foot_wrench[1].force.z())},
-                health().force_torque);
+                health().force_torque, {m[0].offset.tail<2>(), m[1].offset.tail<2>()});
 }
 
 void WalkingController::stabilize(const SensorData& sensors) {

@@ -252,6 +252,12 @@ const ParameterTable<TerrainAdaptationParams> kTerrainAdaptationParameters = {
     {"tilt_search_speed", &TerrainAdaptationParams::tilt_search_speed, "rad/s", kPositive,
      "partial support: turn rate of the foot about its edge"},
     {"max_tilt", &TerrainAdaptationParams::max_tilt, "rad", kPositive, "partial support: bound of a foot's tilt"},
+    {"predict_slope", &TerrainAdaptationParams::predict_slope, "", {},
+     "downhill: the swing foot takes the slope the stance foot stands on"},
+    {"min_slope", &TerrainAdaptationParams::min_slope, "rad", kNonNegative, "downhill: shallower slopes are taken for level ground"},
+    {"max_slope", &TerrainAdaptationParams::max_slope, "rad", kPositive, "downhill: bound of that slope"},
+    {"slope_tolerance", &TerrainAdaptationParams::slope_tolerance, "m", kPositive,
+     "downhill: the footholds' heights agree with the slope within this plus half its height"},
 };
 
 const ParameterTable<StepAdaptationParams> kStepAdaptationParameters = {

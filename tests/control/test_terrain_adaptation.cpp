@@ -255,6 +255,61 @@ TEST(TerrainAdaptation, AFootWithoutATrustedReadingFollowsThePlan) {
   EXPECT_LT(terrain.foot_offset(0), 0.015 - 0.01) << "searching again";
 }
 
+// Slopes: the right foot stands with its sole flat (centre of pressure inside it) where force
+// control has turned it toes down by 0.05 rad and its left edge up by 0.03 rad, its foothold as
+// much lower than the left one's as that slope gives; the left foot swings 0.2 m past it and 0.2 m
+// to its left. On that downhill ground it lands turned the same and aims at the height the slope
+// gives there. Not taken: the same slope uphill (toes up), a slope measured with the centre of
+// pressure at the toe (a sole rolling off its ground), a turned sole whose foothold is not lower
+// (a step's edge under it), the option off.
+TEST(TerrainAdaptation, DownhillTheSwingFootTakesTheSlopeTheStanceFootStandsOn) {
+  const RobotModel model = test::load_model("lola");
+  enum class Case { Downhill, Uphill, CopAtTheToe, StepEdge, Off };
+  for (Case c : {Case::Downhill, Case::Uphill, Case::CopAtTheToe, Case::StepEdge, Case::Off}) {
+    TerrainAdaptationParams params;
+    params.predict_slope = c != Case::Off;
+    TerrainAdaptation terrain(model, params);
+    const Eigen::Vector2d turn(0.03, c == Case::Uphill ? -0.05 : 0.05);  // (roll, pitch)
+    const Eigen::Vector2d slope(-std::tan(turn.y()), std::tan(turn.x()));  // ∂z/∂x, ∂z/∂y
+    PatternSample s;
+    s.feet[0].position << 0.0, 0.1, 0.0;
+    s.feet[1].position << 0.2, -0.1, 0.0;
+    const double right_ground = c == Case::StepEdge ? 0.0 : slope.dot(Eigen::Vector2d(0.2, -0.2));
+    const double toe = model.foot(Side::Right).sole_x_max - 0.005;
+    auto loaded = [&](double left, double right) {
+      std::array<Wrench, 2> w = loads(left, right);
+      if (c == Case::CopAtTheToe) w[1].torque.y() = -toe * right;
+      return w;
+    };
+    for (int i = 0; i < 100; ++i) {
+      terrain.step(kDt, s, loaded(400.0, 400.0), {}, {0.0, right_ground}, {true, true}, {turn, turn});
+    }
+    // The left foot lifts 5 cm and comes down again at its foothold.
+    s.feet[0].in_contact = false;
+    s.feet[0].position.x() = 0.4;
+    for (int i = 0; i < 1000; ++i) {
+      s.feet[0].velocity.z() = i < 500 ? 0.1 : -0.1;
+      s.feet[0].position.z() += s.feet[0].velocity.z() * kDt;
+      terrain.step(kDt, s, loaded(0.0, 800.0), {}, {0.0, right_ground}, {true, true}, {Eigen::Vector2d::Zero(), turn});
+    }
+    const Eigen::Vector2d measured = terrain.ground_gradient(1);
+    if (c == Case::CopAtTheToe) {
+      EXPECT_EQ(measured, Eigen::Vector2d::Zero()) << "not measured";
+    } else {
+      EXPECT_NEAR((measured - slope).norm(), 0.0, 1e-9) << static_cast<int>(c);
+    }
+    if (c != Case::Downhill) {
+      EXPECT_NEAR(terrain.foot_tilt(0), 0.0, 1e-9) << static_cast<int>(c);
+      EXPECT_NEAR(terrain.foot_roll(0), 0.0, 1e-9) << static_cast<int>(c);
+      EXPECT_NEAR(terrain.foot_offset(0), right_ground, 1e-6) << "the stance foot's ground " << static_cast<int>(c);
+      continue;
+    }
+    EXPECT_NEAR(terrain.foot_tilt(0), turn.y(), 1e-4);
+    EXPECT_NEAR(terrain.foot_roll(0), turn.x(), 1e-4);
+    EXPECT_NEAR(terrain.foot_offset(0), right_ground + slope.dot(Eigen::Vector2d(0.2, 0.2)), 1e-3);
+  }
+}
+
 // On flat ground the footholds' estimated heights stay at the ground's: no step may add a bias
 // (a foot landing on time takes load only some 25 ms after the planned touchdown; a loaded sole is
 // deflected). LOLA walks 20 s at 0.6 m/s, about 40 footholds; a bias of 1 mm per step, as before
