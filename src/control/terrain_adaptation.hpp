@@ -19,10 +19,10 @@
 //    force control's turn of eq. 20) while its centre of pressure is inside the sole, so that the
 //    sole lies flat, is the ground's slope there. Where that slope descends from the stance foot
 //    and the footholds' heights agree with it, the swing foot turns to it and aims at the height
-//    it gives. (Aiming at the stance foot's
-//    height, LOLA's feet landed late on a 4° downhill slope, heel first, behind the CoM: each
-//    touchdown added some 5 cm to the DCM error, the stabilizer asked for the centre of pressure
-//    at the toe, the heel lifted, and it fell within a few steps.)
+//    it gives. (Aiming at the stance foot's height, LOLA's feet landed late on a 4° downhill
+//    slope, heel first, behind the CoM: each touchdown added some 5 cm to the DCM error, the
+//    stabilizer asked for the centre of pressure at the toe, the heel lifted, and it fell within a
+//    few steps.)
 // The outputs are height offsets added to the feet's and the CoM's planned heights, and tilts added
 // to the feet's planned orientations in eq. (21); force control (eq. 20) acts on top of them.
 #include <array>
