@@ -3,11 +3,13 @@
 // the errors of the IMU and the F/T sensors from what the controller knows (encoders, the plan's
 // contact state, the robot's masses) and removes them from the readings the rest of the
 // controller sees.
-//  - Start-up, standing on both flat feet (the controller's assumption at reset): the IMU's roll and
-//    pitch misalignment against the upper body (the IMU's orientation against the upper body's from
-//    the leg encoders with a flat foot; it takes up the accelerometer's bias too) and the gyro bias
-//    (the integrated rate against the upper body's rotation from the encoders); the common part of the F/T force offsets (the feet's summed force
-//    against the weight above the sensors; only the sum is observable on two feet).
+//  - Start-up, standing on both feet on level ground (the controller's assumption at reset): the
+//    IMU's roll and pitch misalignment against the upper body (the IMU's orientation against the
+//    upper body's from the leg encoders, each foot turned by its sole's deflection under the
+//    measured wrench, −K⁻¹λ of eq. (11); it takes up the accelerometer's bias too) and the gyro bias
+//    (the integrated rate against the upper body's rotation from the same kinematics); the common
+//    part of the F/T force offsets (the feet's summed force against the weight above the sensors;
+//    only the sum is observable on two feet).
 //  - In every swing: that foot's F/T offsets (the reading against the weight and the planned
 //    acceleration of the part of the foot below the sensor).
 //  - The attitude filter's error caused by the gyro bias (roll/pitch off by τ·b in steady state) can
@@ -19,6 +21,7 @@
 #include <Eigen/Geometry>
 #include <array>
 
+#include "control/contact_model.hpp"
 #include "interface/sensor_data.hpp"
 #include "math/wrench.hpp"
 #include "model/body_tree.hpp"
@@ -61,7 +64,8 @@ struct CalibrationContext {
 
 class SensorCalibration {
  public:
-  SensorCalibration(const RobotModel& model, const SensorCalibrationParams& params);
+  // `contact`: the stabilizer's contact model of eq. (11), for the soles' deflection.
+  SensorCalibration(const RobotModel& model, const SensorCalibrationParams& params, const ContactModelParams& contact);
 
   // Forgets every estimate; `time` is the reset's (the start of the start-up window).
   void reset(double time);
@@ -83,9 +87,15 @@ class SensorCalibration {
  private:
   // Frames of the encoders' configuration (base at the origin, unrotated).
   void update_kinematics(const Eigen::VectorXd& joint_positions);
-  // The tilt (x, y; z = 0) of `orientation` against the upper body's on a flat `foot`, in the upper
-  // body's axes: log(R_kinᵀ R) with R_kin's heading matched to R's.
-  Eigen::Vector3d tilt_against_flat_foot(const Eigen::Quaterniond& orientation, Side foot) const;
+  // The sole's tilt (x, y; z = 0) under `measured`, in the foot's axes: the rotation rows of −K⁻¹λ
+  // (zero for a foot without load or a non-finite reading).
+  Eigen::Vector3d sole_deflection(Side foot, const Wrench& measured) const;
+  // The upper body's orientation on `foot`, turned by `sole_tilt`, in the world up to its heading.
+  Eigen::Matrix3d upper_body_on_foot(Side foot, const Eigen::Vector3d& sole_tilt) const;
+  // The tilt (x, y; z = 0) of `orientation` against the upper body's on `foot` lying on level
+  // ground with its sole tilted by `sole_tilt`, in the upper body's axes: log(R_kinᵀ R) with R_kin's
+  // heading matched to R's.
+  Eigen::Vector3d tilt_against_foot(const Eigen::Quaterniond& orientation, Side foot, const Eigen::Vector3d& sole_tilt) const;
   // What foot k's F/T sensor reads without ground contact: the weight and planned acceleration of
   // the part below it, in the sensor frame, with the upper body at `upper_body`.
   Wrench swing_reading(int k, const Eigen::Quaterniond& upper_body, const Eigen::Vector3d& acceleration) const;
@@ -96,6 +106,7 @@ class SensorCalibration {
 
   const RobotModel& model_;
   SensorCalibrationParams params_;
+  std::array<Eigen::Matrix3d, 2> compliance_;  // K⁻¹ of each flat foot, eq. (11)
   Eigen::VectorXd qpos_;
   BodyFrames frames_;
   SensorData out_;

@@ -92,6 +92,8 @@ class Stabilizer {
   const std::array<double, 2>& force_control_share() const { return alpha_; }
   const std::array<ContactElements, 2>& contact_elements() const { return elements_; }
   const std::array<Eigen::Matrix3d, 2>& contact_stiffness_matrix() const { return stiffness_; }
+  // The point-contact model of eq. (11) it uses.
+  const ContactModelParams& contact_params() const { return contact_params_; }
   // The contact stiffness in use: C, or its on-line estimate [N/m].
   double contact_stiffness() const;
 

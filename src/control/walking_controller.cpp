@@ -29,7 +29,8 @@ WalkingController::WalkingController(const RobotModel& model, const WalkingContr
       step_adaptation_(params.step_adaptation),
       com_estimator_(model),
       monitor_(model, params.sensor_limits),
-      calibration_(model, params.calibration),
+      calibration_(model, params.calibration, stabilizer_.contact_params()),
+      attitude_(model, params.attitude),
       last_setpoint_(model.stand_pose()),
       substituted_sensors_(model.num_joints()) {}
 
@@ -41,6 +42,7 @@ void WalkingController::reset(const SensorData& first) {
   step_adaptation_.reset();
   monitor_.reset(first);
   calibration_.reset(first.time);
+  attitude_.reset();
   last_time_ = first.time;
   com_estimator_.reset();
 
@@ -78,13 +80,16 @@ void WalkingController::step(const SensorData& raw_sensors, const WalkCommand& c
   context.plan = &plan_.sample();
   context.imu_healthy = health().imu;
   context.ft_healthy = health().force_torque;
-  const SensorData& sensors = calibration_.apply(checked, context, params_.rmrc.dt);
+  const SensorData& calibrated = calibration_.apply(checked, context, params_.rmrc.dt);
+  const SensorData& sensors = attitude_.apply(calibrated, context.imu_healthy, context.ft_healthy, params_.rmrc.dt);
   const math::TiltAngles tilt = math::tilt_against_gravity(sensors.imu_orientation.toRotationMatrix());
   status_.upper_body_tilt = {tilt.sagittal, tilt.lateral};
   status_.imu_misalignment = calibration_.misalignment();
   status_.gyro_bias = calibration_.gyro_bias();
   status_.ft_offset = calibration_.ft_offset();
-  if (plan_.state() == WalkingState::Fallen || detect_fall(sensors)) {
+  // The fall is judged on the IMU unit's orientation (after calibration): a reading beyond
+  // recovery stops the walk whatever the estimate, which follows it only at its bandwidth.
+  if (plan_.state() == WalkingState::Fallen || detect_fall(calibrated)) {
     out.position = last_setpoint_;
     publish_status();
     return;

@@ -8,6 +8,7 @@
 
 #include "control/com_estimator.hpp"
 #include "control/resolved_motion_rate_control.hpp"
+#include "control/attitude_estimator.hpp"
 #include "control/sensor_calibration.hpp"
 #include "control/sensor_monitor.hpp"
 #include "control/stabilizer.hpp"
@@ -29,6 +30,7 @@ struct WalkingControllerParams {
   StepAdaptationParams step_adaptation;  // used with the stabilizer (it needs the state estimate)
   SensorLimits sensor_limits;
   SensorCalibrationParams calibration;  // IMU and F/T errors estimated and removed (an extension)
+  AttitudeEstimatorParams attitude;     // roll and pitch aided by the leg kinematics (an extension)
   // [rad] the upper body tilted this far from vertical (IMU) is beyond recovery: the fallen state.
   double fall_tilt = 25.0 * M_PI / 180.0;
 };
@@ -99,6 +101,7 @@ class WalkingController final : public Controller {
   CoMEstimator com_estimator_;
   SensorMonitor monitor_;
   SensorCalibration calibration_;
+  AttitudeEstimator attitude_;
   FaultList new_faults_;
   ControllerStatus status_;
   CycleTiming timing_;

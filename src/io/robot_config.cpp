@@ -211,6 +211,22 @@ const ParameterTable<SensorCalibrationParams> kSensorCalibrationParameters = {
      "a larger F/T torque offset estimate is not used"},
 };
 
+const ParameterTable<AttitudeEstimatorParams> kAttitudeEstimatorParameters = {
+    {"enabled", &AttitudeEstimatorParams::enabled, "", {},
+     "roll and pitch from the gyro and the accelerometer aided by the stance leg's kinematics (else the IMU unit's)"},
+    {"bandwidth", &AttitudeEstimatorParams::bandwidth, "rad/s", kPositive, "ω_n of the tilt correction"},
+    {"damping", &AttitudeEstimatorParams::damping, "", kPositive, "ζ of the tilt correction"},
+    {"bias_gain", &AttitudeEstimatorParams::bias_gain, "1/s", kNonNegative,
+     "κ of the gyro bias tracking from the tilt correction (0: off)"},
+    {"max_bias", &AttitudeEstimatorParams::max_bias, "rad/s", kNonNegative, "bound of the tracked gyro bias"},
+    {"min_load_share", &AttitudeEstimatorParams::min_load_share, "", kNonNegative,
+     "a stance foot for the kinematics carries this share of the weight above the F/T sensors"},
+    {"cop_margin", &AttitudeEstimatorParams::cop_margin, "m", kNonNegative,
+     "a stance foot for the kinematics has its centre of pressure this far inside its sole"},
+    {"max_gap", &AttitudeEstimatorParams::max_gap, "s", kPositive,
+     "without a stance foot this long, the velocity restarts from the kinematics'"},
+};
+
 const ParameterTable<SensorLimits> kSensorLimitParameters = {
     {"max_force", &SensorLimits::max_force, "N", kPositive, "out of range: F/T force, per axis"},
     {"max_torque", &SensorLimits::max_torque, "N·m", kPositive, "out of range: F/T torque, per axis"},
@@ -307,7 +323,7 @@ ParameterSection controller_section(ControllerConfig& p) {
            {kStandingParameters, p.standing},
            {kWeightShiftParameters, p.weight_shift}},
           {"type", "model", "stance", "step_table", "limits", "stabilization", "sensor_limits", "terrain_adaptation",
-           "step_adaptation", "calibration"}};
+           "step_adaptation", "calibration", "attitude_estimation"}};
 }
 ParameterSection command_limits_section(CommandLimits& p) {
   return {"controller.limits", {{kCommandLimitParameters, p}}, {}};
@@ -320,6 +336,9 @@ ParameterSection sensor_limits_section(SensorLimits& p) {
 }
 ParameterSection calibration_section(SensorCalibrationParams& p) {
   return {"controller.calibration", {{kSensorCalibrationParameters, p}}, {}};
+}
+ParameterSection attitude_section(AttitudeEstimatorParams& p) {
+  return {"controller.attitude_estimation", {{kAttitudeEstimatorParameters, p}}, {}};
 }
 ParameterSection terrain_adaptation_section(TerrainAdaptationParams& p) {
   return {"controller.terrain_adaptation", {{kTerrainAdaptationParameters, p}}, {}};
@@ -389,6 +408,7 @@ void read_controller(const YamlReader& r, const YAML::Node& c, ControllerConfig&
   read_section(r, r.mapping(c, "controller", "terrain_adaptation"), terrain_adaptation_section(w.terrain));
   read_section(r, r.mapping(c, "controller", "step_adaptation"), step_adaptation_section(w.step_adaptation));
   read_section(r, r.mapping(c, "controller", "calibration"), calibration_section(w.calibration));
+  read_section(r, r.mapping(c, "controller", "attitude_estimation"), attitude_section(w.attitude));
 }
 
 std::vector<double> read_interval(const YamlReader& r, const YAML::Node& map, const std::string& where, const char* key) {
@@ -544,7 +564,8 @@ std::vector<ParameterDoc> parameter_reference() {
                             sensor_noise_section(sim.noise_levels), controller_section(controller),
                             command_limits_section(w.plan.limits), stabilization_section(w.stabilization),
                             sensor_limits_section(w.sensor_limits), terrain_adaptation_section(w.terrain),
-                            step_adaptation_section(w.step_adaptation), calibration_section(w.calibration)});
+                            step_adaptation_section(w.step_adaptation), calibration_section(w.calibration),
+                            attitude_section(w.attitude)});
 }
 
 RunConfig make_run_config(const Scenario& s, MissingStepTable missing) {

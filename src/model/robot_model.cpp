@@ -316,6 +316,8 @@ int RobotModel::body_named(const std::string& name) const {
 
 double RobotModel::gravity() const { return std::abs(model_->opt.gravity[2]); }
 
+Eigen::Vector3d RobotModel::imu_position() const { return Eigen::Vector3d(model_->site_pos + 3 * imu_site_); }
+
 double RobotModel::weight_above_sensors() const {
   return (total_mass_ - feet_[0].mass_below_sensor - feet_[1].mass_below_sensor) * gravity();
 }

@@ -110,6 +110,8 @@ class RobotModel {
   int body_named(const std::string& name) const;
   int upper_body() const { return upper_body_; }
   int imu_site() const { return imu_site_; }
+  // The IMU site's position in the upper body's frame [m].
+  Eigen::Vector3d imu_position() const;
   // MuJoCo sensor ids of the IMU's parts (orientation: -1 when the model has no such sensor).
   int imu_orientation_sensor() const { return imu_sensors_[0]; }
   int imu_gyro_sensor() const { return imu_sensors_[1]; }
