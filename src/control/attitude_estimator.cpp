@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "math/rotations.hpp"
+#include "model/kinematics.hpp"
 
 namespace biped {
 
@@ -66,9 +67,7 @@ const SensorData& AttitudeEstimator::apply(const SensorData& s, bool imu_healthy
   // The IMU's position relative to each foot's sole centre, in the upper body's axes (the
   // kinematics with the base at the origin, unrotated: only relative positions and the upper body's
   // axes are used).
-  for (int i = 0; i < 7; ++i) qpos_[i] = i == 3 ? 1.0 : 0.0;
-  for (int i = 0; i < model_.num_joints(); ++i) qpos_[model_.joints()[i].qpos_adr] = s.joint_position[i];
-  forward_kinematics(model_.tree(), qpos_, frames_);
+  kinematics_at_origin(model_, s.joint_position, qpos_, frames_);
   const Eigen::Matrix3d& upper_body = frames_.rotation[model_.upper_body()];
   const Eigen::Vector3d imu = frames_.position[model_.upper_body()] + upper_body * imu_in_upper_body_;
   std::array<Eigen::Vector3d, 2> position;

@@ -1,6 +1,7 @@
 #include "control/com_estimator.hpp"
 
 #include "math/rotations.hpp"
+#include "model/kinematics.hpp"
 
 namespace biped {
 
@@ -11,9 +12,7 @@ Eigen::Vector3d CoMEstimator::com_from_foot(const Eigen::VectorXd& joint_positio
                                             const Eigen::Quaterniond& upper_body, Side foot) {
   // Kinematics with the base at the origin, unrotated; the measured upper-body orientation then
   // fixes the rotation of the whole chain.
-  for (int i = 0; i < 7; ++i) qpos_[i] = i == 3 ? 1.0 : 0.0;
-  for (int i = 0; i < model_.num_joints(); ++i) qpos_[model_.joints()[i].qpos_adr] = joint_positions[i];
-  forward_kinematics(model_.tree(), qpos_, frames_);
+  kinematics_at_origin(model_, joint_positions, qpos_, frames_);
   subtree_coms(model_.tree(), frames_);
   const Eigen::Matrix3d& body_in_base = frames_.rotation[model_.upper_body()];
   const Eigen::Matrix3d base = upper_body.toRotationMatrix() * body_in_base.transpose();
@@ -26,9 +25,7 @@ Eigen::Vector3d CoMEstimator::com_from_foot(const Eigen::VectorXd& joint_positio
 
 Eigen::Quaterniond CoMEstimator::upper_body_on_flat_foot(const Eigen::VectorXd& joint_positions, Side stance,
                                                          double stance_yaw) {
-  for (int i = 0; i < 7; ++i) qpos_[i] = i == 3 ? 1.0 : 0.0;
-  for (int i = 0; i < model_.num_joints(); ++i) qpos_[model_.joints()[i].qpos_adr] = joint_positions[i];
-  forward_kinematics(model_.tree(), qpos_, frames_);
+  kinematics_at_origin(model_, joint_positions, qpos_, frames_);
   const Eigen::Quaterniond& foot = frames_.orientation[model_.foot(stance).body];
   const Eigen::Quaterniond& body = frames_.orientation[model_.upper_body()];
   return Eigen::Quaterniond(Eigen::AngleAxisd(stance_yaw, Eigen::Vector3d::UnitZ())) * foot.conjugate() * body;

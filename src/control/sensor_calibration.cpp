@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "math/rotations.hpp"
+#include "model/kinematics.hpp"
 
 namespace biped {
 namespace {
@@ -57,9 +58,7 @@ void SensorCalibration::reset(double time) {
 }
 
 void SensorCalibration::update_kinematics(const Eigen::VectorXd& joint_positions) {
-  for (int i = 0; i < 7; ++i) qpos_[i] = i == 3 ? 1.0 : 0.0;
-  for (int i = 0; i < model_.num_joints(); ++i) qpos_[model_.joints()[i].qpos_adr] = joint_positions[i];
-  forward_kinematics(model_.tree(), qpos_, frames_);
+  kinematics_at_origin(model_, joint_positions, qpos_, frames_);
   subtree_coms(model_.tree(), frames_);
 }
 

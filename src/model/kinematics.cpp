@@ -11,6 +11,13 @@ void forward_kinematics_with_com(const RobotModel& model, RobotData& data) {
   mj_comPos(model.mj(), data.mj());
 }
 
+void kinematics_at_origin(const RobotModel& model, const Eigen::VectorXd& joint_positions, Eigen::VectorXd& qpos,
+                          BodyFrames& frames) {
+  for (int i = 0; i < 7; ++i) qpos[i] = i == 3 ? 1.0 : 0.0;  // position 0, quaternion (1, 0, 0, 0)
+  for (int i = 0; i < model.num_joints(); ++i) qpos[model.joints()[i].qpos_adr] = joint_positions[i];
+  forward_kinematics(model.tree(), qpos, frames);
+}
+
 void integrate_configuration(const RobotModel& model, const Eigen::VectorXd& qdot, double dt, Eigen::VectorXd& qpos) {
   mj_integratePos(model.mj(), qpos.data(), qdot.data(), dt);
 }

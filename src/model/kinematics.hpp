@@ -4,6 +4,7 @@
 // model/ and sim/ touch MuJoCo.
 #include <Eigen/Core>
 
+#include "model/body_tree.hpp"
 #include "model/robot_model.hpp"
 
 namespace biped {
@@ -12,6 +13,12 @@ namespace biped {
 void forward_kinematics(const RobotModel& model, RobotData& data);
 // The same and every subtree's CoM (mj_kinematics, mj_comPos): RobotData::subtree_com().
 void forward_kinematics_with_com(const RobotModel& model, RobotData& data);
+
+// Every body's frame with the floating base at the origin, unrotated, and the joints at
+// `joint_positions` (RobotModel::joints() order): relative positions and orientations, as the
+// estimators use them. `qpos` (size nq) and `frames` are the caller's workspace; no allocation.
+void kinematics_at_origin(const RobotModel& model, const Eigen::VectorXd& joint_positions, Eigen::VectorXd& qpos,
+                          BodyFrames& frames);
 
 // qpos ← qpos ⊕ qdot·dt on the configuration manifold (the free joint's quaternion is rotated,
 // not added to); qdot has one entry per generalized velocity (nv).
