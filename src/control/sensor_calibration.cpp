@@ -63,7 +63,7 @@ void SensorCalibration::update_kinematics(const Eigen::VectorXd& joint_positions
 }
 
 Eigen::Vector3d SensorCalibration::sole_deflection(Side foot, const Wrench& measured) const {
-  if (!(measured.force.z() > 0.0)) return Eigen::Vector3d::Zero();
+  if (!params_.sole_deflection || !(measured.force.z() > 0.0)) return Eigen::Vector3d::Zero();
   const Eigen::Vector3d delta =
       -compliance_[index_of(foot)] * Eigen::Vector3d(measured.force.z(), measured.torque.x(), measured.torque.y());
   return delta.allFinite() ? Eigen::Vector3d(delta.y(), delta.z(), 0.0) : Eigen::Vector3d::Zero();

@@ -33,6 +33,10 @@ namespace biped {
 struct SensorCalibrationParams {
   bool enabled = true;
   double startup_time = 1.0;                        // [s] estimation window while standing after reset
+  // Each standing foot turned by its sole's deflection under the measured wrench (eq. 11's contact
+  // model) in the start-up estimates; false: the feet taken as flat (JVRC-1: its roll bias estimate
+  // came out 9 mrad/s off with it, docs/stabilizer.md).
+  bool sole_deflection = true;
   // [s] of the IMU's attitude filter, to predict its tilt error from the gyro bias (0: no model).
   // Off by default: the start-up bias estimate is off by up to 2 mrad/s (the soles' compliance lets
   // the upper body turn more than the flat-foot kinematics say), and τ times that is as large as the

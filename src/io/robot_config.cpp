@@ -188,6 +188,8 @@ const ParameterTable<SensorCalibrationParams> kSensorCalibrationParameters = {
      "estimate and remove the IMU's misalignment, gyro bias and drift and the F/T offsets"},
     {"startup_time", &SensorCalibrationParams::startup_time, "s", kNonNegative,
      "start-up estimation while standing after the reset (ends earlier with the first walking command)"},
+    {"sole_deflection", &SensorCalibrationParams::sole_deflection, "", {},
+     "start-up estimates with each standing foot turned by its sole's deflection (eq. 11), else flat"},
     {"ahrs_time_constant", &SensorCalibrationParams::ahrs_time_constant, "s", kNonNegative,
      "the IMU attitude filter's time constant, to predict its tilt error from the gyro bias (0: none)"},
     {"drift_time", &SensorCalibrationParams::drift_time, "s", kNonNegative,
