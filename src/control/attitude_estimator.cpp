@@ -3,7 +3,6 @@
 #include <cmath>
 
 #include "math/rotations.hpp"
-#include "model/kinematics.hpp"
 
 namespace biped {
 
@@ -11,8 +10,6 @@ AttitudeEstimator::AttitudeEstimator(const RobotModel& model, const AttitudeEsti
     : model_(model),
       params_(params),
       imu_in_upper_body_(model.imu_position()),
-      qpos_(model.stand_qpos()),
-      frames_(model.tree()),
       out_(model.num_joints()) {
   reset();
 }
@@ -49,7 +46,7 @@ int AttitudeEstimator::choose_stance(const SensorData& s, const std::array<bool,
 }
 
 const SensorData& AttitudeEstimator::apply(const SensorData& s, bool imu_healthy, const std::array<bool, 2>& ft_healthy,
-                                           double dt) {
+                                           const BodyFrames& frames, double dt) {
   if (!params_.enabled) return s;
   if (!imu_healthy || !s.imu_orientation.coeffs().allFinite() || !s.imu_angular_rate.allFinite() ||
       !s.imu_acceleration.allFinite() || !s.joint_position.allFinite()) {
@@ -67,16 +64,15 @@ const SensorData& AttitudeEstimator::apply(const SensorData& s, bool imu_healthy
   // The IMU's position relative to each foot's sole centre, in the upper body's axes (the
   // kinematics with the base at the origin, unrotated: only relative positions and the upper body's
   // axes are used).
-  kinematics_at_origin(model_, s.joint_position, qpos_, frames_);
-  const Eigen::Matrix3d& upper_body = frames_.rotation[model_.upper_body()];
-  const Eigen::Vector3d imu = frames_.position[model_.upper_body()] + upper_body * imu_in_upper_body_;
+  const Eigen::Matrix3d& upper_body = frames.rotation[model_.upper_body()];
+  const Eigen::Vector3d imu = frames.position[model_.upper_body()] + upper_body * imu_in_upper_body_;
   std::array<Eigen::Vector3d, 2> position;
   for (int k = 0; k < 2; ++k) {
     const FootInfo& foot = model_.foot(kSides[k]);
     const SoleSegment& sole = foot.segments[0];
     const Eigen::Vector3d centre(0.5 * (sole.x_min + sole.x_max), 0.5 * (sole.y_min + sole.y_max), sole.z);
-    const Eigen::Matrix3d& R = frames_.rotation[foot.body];
-    const Eigen::Vector3d point = frames_.position[foot.body] + R * (foot.sensor_position + centre);
+    const Eigen::Matrix3d& R = frames.rotation[foot.body];
+    const Eigen::Vector3d point = frames.position[foot.body] + R * (foot.sensor_position + centre);
     position[k] = upper_body.transpose() * (imu - point);
   }
 

@@ -54,10 +54,11 @@ class AttitudeEstimator {
   void reset();
   // One cycle on the calibrated readings (IMU in the upper body's axes): returns them with the
   // orientation's roll and pitch replaced by the estimate (unchanged when disabled or the IMU is
-  // unhealthy). `ft_healthy` says which foot's readings may choose the stance foot. The reference
-  // stays valid until the next call.
+  // unhealthy). `ft_healthy` says which foot's readings may choose the stance foot; `encoders`: the
+  // frames of these readings' joint angles (EncoderKinematics). The reference stays valid until the
+  // next call.
   const SensorData& apply(const SensorData& sensors, bool imu_healthy, const std::array<bool, 2>& ft_healthy,
-                          double dt);
+                          const BodyFrames& encoders, double dt);
 
   // The estimate (valid once started) and the foot whose kinematics were used last cycle (−1: none).
   const Eigen::Quaterniond& orientation() const { return orientation_; }
@@ -71,8 +72,6 @@ class AttitudeEstimator {
   const RobotModel& model_;
   AttitudeEstimatorParams params_;
   Eigen::Vector3d imu_in_upper_body_;  // the IMU site's position in the upper body's frame
-  Eigen::VectorXd qpos_;
-  BodyFrames frames_;
   SensorData out_;
 
   bool started_ = false;

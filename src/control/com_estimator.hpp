@@ -14,10 +14,9 @@ class CoMEstimator {
  public:
   explicit CoMEstimator(const RobotModel& model);
 
-  // r_CoM − r_foot in the gravity-aligned frame that has the upper body's heading, from the encoder
-  // angles (RobotModel::joints() order) and the IMU orientation of the upper body. Allocation-free.
-  Eigen::Vector3d com_from_foot(const Eigen::VectorXd& joint_positions, const Eigen::Quaterniond& upper_body,
-                                Side foot);
+  // r_CoM − r_foot in the gravity-aligned frame that has the upper body's heading, from the frames
+  // of the encoder angles (EncoderKinematics) and the IMU orientation of the upper body.
+  Eigen::Vector3d com_from_foot(const BodyFrames& encoders, const Eigen::Quaterniond& upper_body, Side foot) const;
 
   // The upper body's orientation in the world if the `stance` foot stands flat on level ground with
   // heading `stance_yaw`, from the encoders alone: what stands in for a failed IMU.
@@ -26,14 +25,16 @@ class CoMEstimator {
   // Forgets the last estimate: the next update() starts the rate from zero.
   void reset() { has_estimate_ = false; }
   // One cycle: the horizontal CoM relative to `stance` and its rate, differentiated over dt and
-  // filtered (T = 10 ms); a change of stance foot restarts the rate.
-  void update(const SensorData& sensors, Side stance, double dt);
+  // filtered (T = 10 ms); a change of stance foot restarts the rate. `encoders`: the frames of the
+  // readings' joint angles.
+  void update(const SensorData& sensors, const BodyFrames& encoders, Side stance, double dt);
   const Eigen::Vector2d& estimate() const { return estimate_; }  // [m], heading frame (x forward, y left)
   const Eigen::Vector2d& rate() const { return rate_; }          // [m/s]
 
  private:
   const RobotModel& model_;
-  Eigen::VectorXd qpos_;  // the encoders' configuration with the base at the origin
+  // upper_body_on_flat_foot's workspace (it serves a failed IMU, outside the cycle's kinematics)
+  Eigen::VectorXd qpos_;
   BodyFrames frames_;
   Eigen::Vector2d estimate_ = Eigen::Vector2d::Zero();
   Eigen::Vector2d rate_ = Eigen::Vector2d::Zero();

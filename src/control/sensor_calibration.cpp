@@ -3,7 +3,6 @@
 #include <cmath>
 
 #include "math/rotations.hpp"
-#include "model/kinematics.hpp"
 
 namespace biped {
 namespace {
@@ -28,7 +27,7 @@ Eigen::Vector3d bounded(const Eigen::Vector3d& v, double bound) {
 
 SensorCalibration::SensorCalibration(const RobotModel& model, const SensorCalibrationParams& params,
                                      const ContactModelParams& contact)
-    : model_(model), params_(params), qpos_(model.stand_qpos()), frames_(model.tree()), out_(model.num_joints()) {
+    : model_(model), params_(params), out_(model.num_joints()) {
   for (Side side : kSides) {
     const Eigen::Matrix3d compliance = point_contact_stiffness(model.foot(side), contact).inverse();
     compliance_[index_of(side)] = compliance.allFinite() ? compliance : Eigen::Matrix3d::Zero();
@@ -57,11 +56,6 @@ void SensorCalibration::reset(double time) {
   ft_offset_ = {};
 }
 
-void SensorCalibration::update_kinematics(const Eigen::VectorXd& joint_positions) {
-  kinematics_at_origin(model_, joint_positions, qpos_, frames_);
-  subtree_coms(model_.tree(), frames_);
-}
-
 Eigen::Vector3d SensorCalibration::sole_deflection(Side foot, const Wrench& measured) const {
   if (!params_.sole_deflection || !(measured.force.z() > 0.0)) return Eigen::Vector3d::Zero();
   const Eigen::Vector3d delta =
@@ -70,8 +64,8 @@ Eigen::Vector3d SensorCalibration::sole_deflection(Side foot, const Wrench& meas
 }
 
 Eigen::Matrix3d SensorCalibration::upper_body_on_foot(Side foot, const Eigen::Vector3d& sole_tilt) const {
-  const Eigen::Matrix3d& sole = frames_.rotation[model_.foot(foot).body];
-  return math::so3::exp(sole_tilt) * sole.transpose() * frames_.rotation[model_.upper_body()];
+  const Eigen::Matrix3d& sole = frames_->rotation[model_.foot(foot).body];
+  return math::so3::exp(sole_tilt) * sole.transpose() * frames_->rotation[model_.upper_body()];
 }
 
 Eigen::Vector3d SensorCalibration::tilt_against_foot(const Eigen::Quaterniond& orientation, Side foot,
@@ -88,12 +82,12 @@ Eigen::Vector3d SensorCalibration::tilt_against_foot(const Eigen::Quaterniond& o
 Wrench SensorCalibration::swing_reading(int k, const Eigen::Quaterniond& upper_body,
                                         const Eigen::Vector3d& acceleration) const {
   const FootInfo& foot = model_.foot(kSides[k]);
-  const Eigen::Matrix3d& sole = frames_.rotation[foot.body];
+  const Eigen::Matrix3d& sole = frames_->rotation[foot.body];
   // The sensor's axes are the foot body's (as the pattern generator's λ_id assumes).
   const Eigen::Matrix3d sensor_in_world =
-      upper_body.toRotationMatrix() * frames_.rotation[model_.upper_body()].transpose() * sole;
-  const Eigen::Vector3d sensor_point = frames_.position[foot.body] + sole * foot.sensor_position;
-  const Eigen::Vector3d lever = sole.transpose() * (frames_.subtree_com[foot.body] - sensor_point);
+      upper_body.toRotationMatrix() * frames_->rotation[model_.upper_body()].transpose() * sole;
+  const Eigen::Vector3d sensor_point = frames_->position[foot.body] + sole * foot.sensor_position;
+  const Eigen::Vector3d lever = sole.transpose() * (frames_->subtree_com[foot.body] - sensor_point);
   Wrench w;
   w.force = foot.mass_below_sensor * sensor_in_world.transpose() *
             (-acceleration - model_.gravity() * Eigen::Vector3d::UnitZ());
@@ -152,16 +146,16 @@ void SensorCalibration::estimate_at_startup(const SensorData& s, const Calibrati
   // The F/T sensors: the summed force against the weight above them (each foot's share: half).
   if (c.ft_healthy[0] && c.ft_healthy[1] && finite(s.foot_wrench[0]) && finite(s.foot_wrench[1])) {
     const Eigen::Quaterniond upper_body = corrected_orientation(s.imu_orientation);
-    const Eigen::Matrix3d base = upper_body.toRotationMatrix() * frames_.rotation[model_.upper_body()].transpose();
+    const Eigen::Matrix3d base = upper_body.toRotationMatrix() * frames_->rotation[model_.upper_body()].transpose();
     Eigen::Vector3d total = -model_.weight_above_sensors() * Eigen::Vector3d::UnitZ();
-    for (int k = 0; k < 2; ++k) total += base * frames_.rotation[model_.foot(kSides[k]).body] * s.foot_wrench[k].force;
+    for (int k = 0; k < 2; ++k) total += base * frames_->rotation[model_.foot(kSides[k]).body] * s.foot_wrench[k].force;
     if (total.allFinite()) {
       ++force_samples_;
       sum_force_error_ += total;
       const Eigen::Vector3d error = sum_force_error_ / force_samples_;
       for (int k = 0; k < 2; ++k) {
         const Eigen::Vector3d offset =
-            0.5 * (base * frames_.rotation[model_.foot(kSides[k]).body]).transpose() * error;
+            0.5 * (base * frames_->rotation[model_.foot(kSides[k]).body]).transpose() * error;
         if (offset.norm() <= params_.max_force_offset) ft_offset_[k].force = offset;
       }
     }
@@ -218,10 +212,11 @@ void SensorCalibration::track_drift(const Eigen::Quaterniond& upper_body, const 
   drift_ = bounded(drift_ + (dt / params_.drift_time) * (tilt - drift_), params_.max_drift);
 }
 
-const SensorData& SensorCalibration::apply(const SensorData& s, const CalibrationContext& c, double dt) {
+const SensorData& SensorCalibration::apply(const SensorData& s, const CalibrationContext& c, const BodyFrames& encoders,
+                                           double dt) {
   if (!params_.enabled) return s;
   out_ = s;
-  update_kinematics(s.joint_position);
+  frames_ = &encoders;
   if (!startup_done_) {
     if (c.standing && s.time - start_time_ < params_.startup_time) {
       estimate_at_startup(s, c, dt);

@@ -74,8 +74,10 @@ class SensorCalibration {
   // Forgets every estimate; `time` is the reset's (the start of the start-up window).
   void reset(double time);
   // One cycle: updates the estimates and returns the corrected readings (the input unchanged when
-  // disabled). The reference stays valid until the next call.
-  const SensorData& apply(const SensorData& sensors, const CalibrationContext& context, double dt);
+  // disabled). `encoders`: the frames of the readings' joint angles (EncoderKinematics). The
+  // reference stays valid until the next call.
+  const SensorData& apply(const SensorData& sensors, const CalibrationContext& context, const BodyFrames& encoders,
+                          double dt);
 
   // Estimates (zero until known): IMU axes against the upper body's as a rotation vector in the
   // upper body's axes (roll, pitch; no yaw), gyro bias [rad/s] in IMU axes, the attitude filter's
@@ -89,8 +91,6 @@ class SensorCalibration {
   int swing_rezeros() const { return swing_rezeros_; }
 
  private:
-  // Frames of the encoders' configuration (base at the origin, unrotated).
-  void update_kinematics(const Eigen::VectorXd& joint_positions);
   // The sole's tilt (x, y; z = 0) under `measured`, in the foot's axes: the rotation rows of −K⁻¹λ
   // (zero for a foot without load or a non-finite reading).
   Eigen::Vector3d sole_deflection(Side foot, const Wrench& measured) const;
@@ -111,8 +111,8 @@ class SensorCalibration {
   const RobotModel& model_;
   SensorCalibrationParams params_;
   std::array<Eigen::Matrix3d, 2> compliance_;  // K⁻¹ of each flat foot, eq. (11)
-  Eigen::VectorXd qpos_;
-  BodyFrames frames_;
+  // The encoders' frames (base at the origin, unrotated) of the apply() under way.
+  const BodyFrames* frames_ = nullptr;
   SensorData out_;
 
   double start_time_ = 0.0;

@@ -28,6 +28,7 @@ WalkingController::WalkingController(const RobotModel& model, const WalkingContr
       terrain_(model, params.terrain),
       step_adaptation_(params.step_adaptation),
       com_estimator_(model),
+      encoders_(model),
       monitor_(model, params.sensor_limits),
       calibration_(model, params.calibration, stabilizer_.contact_params()),
       attitude_(model, params.attitude),
@@ -75,13 +76,16 @@ Eigen::Matrix3d WalkingController::heading_frame() const { return yaw_rotation(p
 
 void WalkingController::step(const SensorData& raw_sensors, const WalkCommand& command, JointCommand& out) {
   const SensorData& checked = detect_faults(raw_sensors);
+  // One kinematics pass of the encoders for the calibration, the attitude and the CoM estimates.
+  encoders_.update(checked.joint_position);
   CalibrationContext context;
   context.standing = plan_.state() == WalkingState::Standing;
   context.plan = &plan_.sample();
   context.imu_healthy = health().imu;
   context.ft_healthy = health().force_torque;
-  const SensorData& calibrated = calibration_.apply(checked, context, params_.rmrc.dt);
-  const SensorData& sensors = attitude_.apply(calibrated, context.imu_healthy, context.ft_healthy, params_.rmrc.dt);
+  const SensorData& calibrated = calibration_.apply(checked, context, encoders_.frames(), params_.rmrc.dt);
+  const SensorData& sensors =
+      attitude_.apply(calibrated, context.imu_healthy, context.ft_healthy, encoders_.frames(), params_.rmrc.dt);
   const math::TiltAngles tilt = math::tilt_against_gravity(sensors.imu_orientation.toRotationMatrix());
   status_.upper_body_tilt = {tilt.sagittal, tilt.lateral};
   status_.imu_misalignment = calibration_.misalignment();
@@ -208,7 +212,7 @@ void WalkingController::stabilize(const SensorData& sensors) {
   const PatternSample& s = plan_.sample();
   if (params_.stabilizer && uses_sensors()) {
     // eq. (10)'s Δr_CoM: planned − estimated CoM relative to the stance foot, heading frame.
-    com_estimator_.update(sensors, s.stance, params_.rmrc.dt);
+    com_estimator_.update(sensors, encoders_.frames(), s.stance, params_.rmrc.dt);
     const Eigen::Matrix2d to_heading = yaw_rotation(-s.heading).topLeftCorner<2, 2>();
     const FootReference& foot = s.feet[index_of(s.stance)];
     StabilizerInput in;

@@ -16,6 +16,7 @@
 #include "control/task_reference.hpp"
 #include "control/terrain_adaptation.hpp"
 #include "control/walking_plan.hpp"
+#include "model/kinematics.hpp"
 #include "interface/controller.hpp"
 #include "model/task_space.hpp"
 
@@ -99,6 +100,7 @@ class WalkingController final : public Controller {
   TerrainAdaptation terrain_;
   StepAdaptation step_adaptation_;
   CoMEstimator com_estimator_;
+  EncoderKinematics encoders_;  // this cycle's frames of the (fault-checked) encoder angles
   SensorMonitor monitor_;
   SensorCalibration calibration_;
   AttitudeEstimator attitude_;

@@ -18,6 +18,14 @@ void kinematics_at_origin(const RobotModel& model, const Eigen::VectorXd& joint_
   forward_kinematics(model.tree(), qpos, frames);
 }
 
+EncoderKinematics::EncoderKinematics(const RobotModel& model)
+    : model_(model), qpos_(model.stand_qpos()), frames_(model.tree()) {}
+
+void EncoderKinematics::update(const Eigen::VectorXd& joint_positions) {
+  kinematics_at_origin(model_, joint_positions, qpos_, frames_);
+  subtree_coms(model_.tree(), frames_);
+}
+
 void integrate_configuration(const RobotModel& model, const Eigen::VectorXd& qdot, double dt, Eigen::VectorXd& qpos) {
   mj_integratePos(model.mj(), qpos.data(), qdot.data(), dt);
 }

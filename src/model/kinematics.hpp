@@ -20,6 +20,22 @@ void forward_kinematics_with_com(const RobotModel& model, RobotData& data);
 void kinematics_at_origin(const RobotModel& model, const Eigen::VectorXd& joint_positions, Eigen::VectorXd& qpos,
                           BodyFrames& frames);
 
+// The encoders' kinematics of one control cycle: kinematics_at_origin and every subtree's CoM,
+// computed once and read by each estimator (the calibration, the attitude estimation, the CoM
+// estimate). Allocation-free after construction.
+class EncoderKinematics {
+ public:
+  explicit EncoderKinematics(const RobotModel& model);
+  void update(const Eigen::VectorXd& joint_positions);
+  // The frames of the last update(), with subtree_com filled in.
+  const BodyFrames& frames() const { return frames_; }
+
+ private:
+  const RobotModel& model_;
+  Eigen::VectorXd qpos_;
+  BodyFrames frames_;
+};
+
 // qpos ← qpos ⊕ qdot·dt on the configuration manifold (the free joint's quaternion is rotated,
 // not added to); qdot has one entry per generalized velocity (nv).
 void integrate_configuration(const RobotModel& model, const Eigen::VectorXd& qdot, double dt, Eigen::VectorXd& qpos);

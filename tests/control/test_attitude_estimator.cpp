@@ -11,6 +11,7 @@
 #include "io/robot_config.hpp"
 #include "io/scenario.hpp"
 #include "math/rotations.hpp"
+#include "model/kinematics.hpp"
 #include "sim/closed_loop.hpp"
 #include "studies/scenario_runner.hpp"
 #include "test_support.hpp"
@@ -43,6 +44,7 @@ struct RockingRobot {
   SensorData sensors{model.num_joints()};
   Eigen::Vector3d lever;  // the IMU relative to the left sole's centre, upper-body axes
   Eigen::Vector3d gyro_bias = Eigen::Vector3d::Zero();
+  EncoderKinematics encoders{model};
 
   RockingRobot() {
     sensors.joint_position = model.stand_pose();
@@ -61,6 +63,7 @@ struct RockingRobot {
                                 body * Eigen::Vector3d(model.mj()->site_pos + 3 * model.imu_site());
     lever = body.transpose() * (imu - point);
     sensors.foot_wrench[0].force = Eigen::Vector3d(0.0, 0.0, model.weight_above_sensors());
+    encoders.update(sensors.joint_position);  // the joints stay fixed
   }
 
   // The upper body's orientation at pitch θ (the stand pose's upper body is upright).
@@ -87,13 +90,13 @@ TEST(AttitudeEstimator, FollowsTheTiltWhileTheAccelerometerLeansWithTheMotion) {
   const double amplitude = 2.0 * kDeg, omega = 2.0 * M_PI;
   robot.read(0.0, 0.0, amplitude * omega, 0.0);
   robot.sensors.imu_orientation = Eigen::Quaterniond(RockingRobot::orientation(2.0 * kDeg));  // start 2° off
-  estimator.apply(robot.sensors, true, {true, true}, kDt);
+  estimator.apply(robot.sensors, true, {true, true}, robot.encoders.frames(), kDt);
   double worst_late = 0.0, worst_up = 0.0;
   for (int i = 1; i <= 10000; ++i) {
     const double t = i * kDt;
     const double pitch = amplitude * std::sin(omega * t);
     robot.read(t, pitch, amplitude * omega * std::cos(omega * t), -amplitude * omega * omega * std::sin(omega * t));
-    const SensorData& out = estimator.apply(robot.sensors, true, {true, true}, kDt);
+    const SensorData& out = estimator.apply(robot.sensors, true, {true, true}, robot.encoders.frames(), kDt);
     ASSERT_EQ(estimator.stance_foot(), 0);
     if (t > 5.0) {
       worst_late = std::max(worst_late, tilt_error(out.imu_orientation, RockingRobot::orientation(pitch)));
@@ -116,7 +119,7 @@ TEST(AttitudeEstimator, GyroBiasLeavesTheTheoreticalErrorOrIsTracked) {
     SensorData out = robot.sensors;
     for (int i = 0; i <= 60000; ++i) {
       robot.read(i * kDt, 0.0, 0.0, 0.0);
-      out = estimator.apply(robot.sensors, true, {true, true}, kDt);
+      out = estimator.apply(robot.sensors, true, {true, true}, robot.encoders.frames(), kDt);
     }
     const double error = tilt_error(out.imu_orientation, Eigen::Matrix3d::Identity());
     const double expected = 2.0 * params.damping * robot.gyro_bias.head<2>().norm() / params.bandwidth;
@@ -137,10 +140,10 @@ TEST(AttitudeEstimator, WithoutALoadedStanceFootItIntegratesTheGyro) {
   AttitudeEstimator estimator(robot.model, enabled());
   robot.read(0.0, 0.0, 0.0, 0.0);
   robot.sensors.imu_orientation = Eigen::Quaterniond(RockingRobot::orientation(1.0 * kDeg));
-  SensorData out = estimator.apply(robot.sensors, true, {true, true}, kDt);
+  SensorData out = estimator.apply(robot.sensors, true, {true, true}, robot.encoders.frames(), kDt);
   for (int i = 1; i <= 2000; ++i) {
     robot.read(i * kDt, 0.0, 0.0, 0.0);
-    out = estimator.apply(robot.sensors, true, {true, true}, kDt);
+    out = estimator.apply(robot.sensors, true, {true, true}, robot.encoders.frames(), kDt);
   }
   EXPECT_EQ(estimator.stance_foot(), -1);
   EXPECT_NEAR(tilt_error(out.imu_orientation, Eigen::Matrix3d::Identity()), 1.0 * kDeg, 1e-6);
@@ -155,8 +158,10 @@ TEST(AttitudeEstimator, NonFiniteReadingsNeverEnterTheState) {
     if (i % 3 == 1) robot.sensors.imu_acceleration.x() = nan;
     if (i % 3 == 2) robot.sensors.joint_position[i % robot.model.num_joints()] = nan;
     if (i % 7 == 0) robot.sensors.foot_wrench[0].torque.y() = nan;
-    const SensorData& out = estimator.apply(robot.sensors, true, {true, true}, kDt);
+    robot.encoders.update(robot.sensors.joint_position);
+    const SensorData& out = estimator.apply(robot.sensors, true, {true, true}, robot.encoders.frames(), kDt);
     robot.sensors.joint_position = robot.model.stand_pose();
+    robot.encoders.update(robot.sensors.joint_position);
     robot.sensors.foot_wrench[0].torque.setZero();
     ASSERT_TRUE(out.imu_orientation.coeffs().allFinite()) << i;
   }
@@ -170,9 +175,9 @@ TEST(AttitudeEstimator, DisabledOrWithAFailedImuPassesTheReadingsThrough) {
   AttitudeEstimatorParams off;
   off.enabled = false;
   AttitudeEstimator disabled(robot.model, off);
-  EXPECT_EQ(&disabled.apply(robot.sensors, true, {true, true}, kDt), &robot.sensors);
+  EXPECT_EQ(&disabled.apply(robot.sensors, true, {true, true}, robot.encoders.frames(), kDt), &robot.sensors);
   AttitudeEstimator on(robot.model, enabled());
-  EXPECT_EQ(&on.apply(robot.sensors, false, {true, true}, kDt), &robot.sensors);
+  EXPECT_EQ(&on.apply(robot.sensors, false, {true, true}, robot.encoders.frames(), kDt), &robot.sensors);
 }
 
 // Closed loop: LOLA walking with the realistic sensor errors (the IMU unit's attitude filter, its

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "math/rotations.hpp"
+#include "model/kinematics.hpp"
 #include "sim/simulation.hpp"
 #include "test_support.hpp"
 
@@ -18,6 +19,7 @@ TEST(CoMEstimator, MatchesTheGroundTruthFromSensorsOnly) {
   p.pushes.push_back({0.2, 0.3, "upper_body", Eigen::Vector3d(60.0, -40.0, 0.0)});
   Simulation sim(p, model);
   CoMEstimator estimator(model);
+  EncoderKinematics encoders(model);
   JointCommand hold(model.num_joints());
   hold.position = model.stand_pose();
   SensorData s(model.num_joints());
@@ -27,8 +29,9 @@ TEST(CoMEstimator, MatchesTheGroundTruthFromSensorsOnly) {
     sim.advance();
     sim.read_sensors(s);
     const mjData* d = sim.data();
+    encoders.update(s.joint_position);
     for (Side side : kSides) {
-      const Eigen::Vector3d estimate = estimator.com_from_foot(s.joint_position, s.imu_orientation, side);
+      const Eigen::Vector3d estimate = estimator.com_from_foot(encoders.frames(), s.imu_orientation, side);
       // Sensors describe the state at the start of the last physics step: compare with the ground
       // truth kinematics of that state (xpos, subtree_com are from the same step).
       const Eigen::Vector3d truth_world = Eigen::Vector3d(d->subtree_com + 3 * model.pelvis_body()) -
@@ -46,8 +49,9 @@ TEST(CoMEstimator, MatchesTheGroundTruthFromSensorsOnly) {
 struct LeaningLegs {
   const RobotModel& model;
   SensorData sensors;
+  EncoderKinematics encoders;
   static constexpr double kRate = 0.3;  // [rad/s]
-  explicit LeaningLegs(const RobotModel& m) : model(m), sensors(m.num_joints()) {
+  explicit LeaningLegs(const RobotModel& m) : model(m), sensors(m.num_joints()), encoders(m) {
     sensors.joint_position = model.stand_pose();
   }
   const SensorData& at(double t) {
@@ -55,6 +59,11 @@ struct LeaningLegs {
     sensors.joint_position = model.stand_pose();
     for (const char* hip : {"left_hip_pitch", "right_hip_pitch"}) sensors.joint_position[model.joint_index(hip)] += kRate * t;
     return sensors;
+  }
+  // One cycle of the estimator on the readings at t, with their encoders' kinematics.
+  void step(CoMEstimator& estimator, double t, Side stance, double dt) {
+    encoders.update(at(t).joint_position);
+    estimator.update(sensors, encoders.frames(), stance, dt);
   }
 };
 
@@ -65,23 +74,23 @@ TEST(CoMEstimator, RateRestartsFromZeroAtTheFirstUpdateAndAtAStanceChange) {
   CoMEstimator estimator(model);
   LeaningLegs legs(model);
   const double dt = 0.001;
-  estimator.update(legs.at(0.0), Side::Left, dt);
+  legs.step(estimator, 0.0, Side::Left, dt);
   EXPECT_EQ(estimator.rate(), Eigen::Vector2d::Zero());
-  for (int i = 1; i <= 20; ++i) estimator.update(legs.at(i * dt), Side::Left, dt);
+  for (int i = 1; i <= 20; ++i) legs.step(estimator, i * dt, Side::Left, dt);
   EXPECT_GT(estimator.rate().norm(), 0.01) << "moving";
 
-  estimator.update(legs.at(21 * dt), Side::Right, dt);
+  legs.step(estimator, 21 * dt, Side::Right, dt);
   EXPECT_EQ(estimator.rate(), Eigen::Vector2d::Zero());
   EXPECT_LT((estimator.estimate() -
-             estimator.com_from_foot(legs.sensors.joint_position, legs.sensors.imu_orientation, Side::Right).head<2>())
+             estimator.com_from_foot(legs.encoders.frames(), legs.sensors.imu_orientation, Side::Right).head<2>())
                 .norm(),
             1e-12)
       << "relative to the new stance foot";
-  estimator.update(legs.at(22 * dt), Side::Right, dt);
+  legs.step(estimator, 22 * dt, Side::Right, dt);
   EXPECT_GT(estimator.rate().norm(), 0.0);
 
   estimator.reset();
-  estimator.update(legs.at(23 * dt), Side::Right, dt);
+  legs.step(estimator, 23 * dt, Side::Right, dt);
   EXPECT_EQ(estimator.rate(), Eigen::Vector2d::Zero());
 }
 
@@ -96,7 +105,7 @@ TEST(CoMEstimator, RateFollowsACoMMovingAtConstantVelocity) {
   Eigen::Vector2d previous = Eigen::Vector2d::Zero();
   double worst = 0.0, speed = 0.0;
   for (int i = 0; i <= 300; ++i) {
-    estimator.update(legs.at(i * dt), Side::Left, dt);
+    legs.step(estimator, i * dt, Side::Left, dt);
     const Eigen::Vector2d difference = (estimator.estimate() - previous) / dt;
     previous = estimator.estimate();
     if (i < 150) continue;  // 15 filter time constants

@@ -12,6 +12,7 @@
 #include "io/robot_config.hpp"
 #include "io/scenario.hpp"
 #include "math/rotations.hpp"
+#include "model/kinematics.hpp"
 #include "studies/scenario_runner.hpp"
 #include "test_support.hpp"
 
@@ -38,6 +39,7 @@ struct StandingRobot {
   Eigen::Vector3d gyro_bias{0.004, -0.003, 0.002};
   std::array<Wrench, 2> offset;
   double pitch_offset = 0.0, pitch_amplitude = 0.0, pitch_frequency = 2.0;  // [rad], [rad], [Hz]
+  EncoderKinematics encoders{model};
 
   StandingRobot() {
     sensors.joint_position = model.stand_pose();
@@ -83,6 +85,13 @@ SensorCalibrationParams with_filter_model() {
   return p;
 }
 
+// One cycle as the controller runs it: the encoders' kinematics, then the calibration.
+const SensorData& apply(SensorCalibration& calibration, StandingRobot& robot, const SensorData& s,
+                        const CalibrationContext& context) {
+  robot.encoders.update(s.joint_position);
+  return calibration.apply(s, context, robot.encoders.frames(), 0.001);
+}
+
 TEST(SensorCalibration, RecoversMisalignmentAndGyroBiasWhileStanding) {
   StandingRobot robot;
   SensorCalibration calibration(robot.model, without_filter_model(), robot.contact);
@@ -91,7 +100,7 @@ TEST(SensorCalibration, RecoversMisalignmentAndGyroBiasWhileStanding) {
   context.standing = true;
   context.plan = &robot.plan;
   const SensorData* out = nullptr;
-  for (int i = 0; i <= 1100; ++i) out = &calibration.apply(robot.at(0.001 * i), context, 0.001);
+  for (int i = 0; i <= 1100; ++i) out = &apply(calibration, robot, robot.at(0.001 * i), context);
   EXPECT_TRUE(calibration.startup_done());
   const Eigen::Vector3d expected = math::so3::log(robot.mounting);
   EXPECT_NEAR(calibration.misalignment().x(), expected.x(), 0.01 * kDeg);
@@ -117,7 +126,7 @@ TEST(SensorCalibration, TheSolesDeflectionIsNotTakenForMisalignmentOrBias) {
   CalibrationContext context;
   context.standing = true;
   context.plan = &robot.plan;
-  for (int i = 0; i <= 1100; ++i) calibration.apply(robot.at(0.001 * i), context, 0.001);
+  for (int i = 0; i <= 1100; ++i) apply(calibration, robot, robot.at(0.001 * i), context);
   const Eigen::Vector3d expected = math::so3::log(robot.mounting);
   EXPECT_NEAR(calibration.misalignment().x(), expected.x(), 0.02 * kDeg);
   EXPECT_NEAR(calibration.misalignment().y(), expected.y(), 0.02 * kDeg);
@@ -141,7 +150,7 @@ TEST(SensorCalibration, PredictsTheAttitudeFiltersBiasError) {
     const double t = 0.001 * i;
     SensorData s = robot.at(t);
     s.imu_orientation = robot.upper_body * Eigen::Quaterniond(math::so3::exp(tau * (1.0 - std::exp(-t / tau)) * bias_perp));
-    out = &calibration.apply(s, context, 0.001);
+    out = &apply(calibration, robot, s, context);
   }
   EXPECT_LT(out->imu_orientation.angularDistance(robot.upper_body), 0.02 * kDeg);
   EXPECT_NEAR(calibration.bias_tilt().head<2>().norm(), tau * bias_perp.norm(), 0.05 * tau * bias_perp.norm());
@@ -153,7 +162,7 @@ TEST(SensorCalibration, ZeroesEachForceSensorInItsSwing) {
   calibration.reset(0.0);
   CalibrationContext context;
   context.plan = &robot.plan;
-  for (int i = 0; i < 10; ++i) calibration.apply(robot.at(0.001 * i), context, 0.001);  // not standing: start-up ends
+  for (int i = 0; i < 10; ++i) apply(calibration, robot, robot.at(0.001 * i), context);  // not standing: start-up ends
   // The left foot swings 5 cm above the right one: its sensor reads the weight of the foot below it.
   const FootInfo& foot = robot.model.foot(Side::Left);
   Eigen::VectorXd qpos = robot.model.stand_qpos();
@@ -172,12 +181,12 @@ TEST(SensorCalibration, ZeroesEachForceSensorInItsSwing) {
     s.imu_orientation = robot.upper_body * robot.mounting;
     s.foot_wrench[0].force = weight + robot.offset[0].force;
     s.foot_wrench[0].torque = lever.cross(weight) + robot.offset[0].torque;
-    calibration.apply(s, context, 0.001);
+    apply(calibration, robot, s, context);
   }
   EXPECT_EQ(calibration.swing_rezeros(), 0);  // not until the swing ends
   robot.plan.feet[0].in_contact = true;
   robot.plan.feet[0].position.z() = 0.0;
-  const SensorData& out = calibration.apply(robot.at(0.3), context, 0.001);
+  const SensorData& out = apply(calibration, robot, robot.at(0.3), context);
   EXPECT_EQ(calibration.swing_rezeros(), 1);
   // The misalignment is unknown here (no start-up): the foot's small tilt costs a little accuracy.
   EXPECT_LT((calibration.ft_offset()[0].force - robot.offset[0].force).norm(), 0.5);
@@ -202,7 +211,7 @@ TEST(SensorCalibration, NonFiniteReadingsNeverEnterTheEstimates) {
       s.joint_position[3] = nan;
     }
     context.standing = i < 1200;
-    const SensorData& out = calibration.apply(s, context, 0.001);
+    const SensorData& out = apply(calibration, robot, s, context);
     if (i % 100 != 7) {
       EXPECT_TRUE(out.imu_orientation.coeffs().allFinite()) << i;
       EXPECT_TRUE(out.imu_angular_rate.allFinite()) << i;
@@ -224,7 +233,7 @@ TEST(SensorCalibration, DisabledPassesTheReadingsThrough) {
   context.standing = true;
   context.plan = &robot.plan;
   const SensorData& s = robot.at(0.5);
-  EXPECT_EQ(&calibration.apply(s, context, 0.001), &s);
+  EXPECT_EQ(&apply(calibration, robot, s, context), &s);
 }
 
 // Closed loop: LOLA walking with its IMU mounted 1.4° off in roll and pitch (with the other
