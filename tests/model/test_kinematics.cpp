@@ -100,6 +100,29 @@ TEST_P(KinematicsTest, ForwardKinematicsPlacesTheFramesOfTheConfiguration) {
   EXPECT_GT((data.body_position(model.foot(Side::Left).body) - foot - shift).norm(), 0.05);
 }
 
+// The estimators' kinematics of the encoder angles: the frames and subtree CoMs of MuJoCo's
+// kinematics at the same joint angles with the base at the origin, unrotated.
+TEST_P(KinematicsTest, EncoderKinematicsIsMuJoCosAtTheOriginWithTheEncoderAngles) {
+  EncoderKinematics encoders(model);
+  std::mt19937 rng(7);
+  for (int trial = 0; trial < 5; ++trial) {
+    const Eigen::VectorXd q = random_configuration(model, rng);
+    Eigen::VectorXd joints(model.num_joints());
+    for (int i = 0; i < model.num_joints(); ++i) joints[i] = q[model.joints()[i].qpos_adr];
+    encoders.update(joints);
+    data.qpos() = q;
+    data.qpos().head<3>().setZero();
+    data.qpos().segment<4>(3) << 1.0, 0.0, 0.0, 0.0;
+    forward_kinematics_with_com(model, data);
+    const BodyFrames& frames = encoders.frames();
+    for (int b : {model.pelvis_body(), model.upper_body(), model.foot(Side::Left).body, model.foot(Side::Right).body}) {
+      EXPECT_LT((frames.position[b] - data.body_position(b)).norm(), 1e-12) << "body " << b;
+      EXPECT_LT((frames.subtree_com[b] - data.subtree_com(b)).norm(), 1e-12) << "body " << b;
+      EXPECT_LT((frames.rotation[b] - Eigen::Matrix3d(data.body_rotation(b))).norm(), 1e-12) << "body " << b;
+    }
+  }
+}
+
 // Part of each leg moves with its foot: more than nothing, less than both legs; its height lies
 // between the ankles and the hips; the ankle sits a few centimetres above the sole.
 TEST_P(KinematicsTest, LegMassSplitLiesWithinTheLegs) {
