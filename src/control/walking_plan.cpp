@@ -91,9 +91,20 @@ void WalkingPlan::replan(double t, StepDecision decision, const VelocityCommand&
   if (decision == StepDecision::None) return;
   const bool walking = decision == StepDecision::StartWalk || decision == StepDecision::Continue;
   const double step_time = params_.table.lookup(planned_vx_, step_).step_time;
-  planned_vx_ = walking ? ramp_towards(planned_vx_, command.vx, max_speed_change()) : 0.0;
-  planned_vy_ = walking ? ramp_towards(planned_vy_, command.vy, params_.limits.vy_rate * step_time) : 0.0;
-  planned_omega_ = walking ? ramp_towards(planned_omega_, command.omega, params_.limits.omega_rate * step_time) : 0.0;
+  // Sideways speed and turn rate first, as far as the present forward speed leaves room for them;
+  // then the forward speed, as far as they leave room for it: the plan stays inside the limits'
+  // combined bound (a car slows before the curve).
+  const CommandLimits& limits = params_.limits;
+  const double lateral = lateral_share_left(limits, planned_vx_);
+  planned_vy_ = walking ? std::clamp(ramp_towards(planned_vy_, command.vy, limits.vy_rate * step_time),
+                                     -lateral * limits.vy_max, lateral * limits.vy_max)
+                        : 0.0;
+  planned_omega_ = walking ? std::clamp(ramp_towards(planned_omega_, command.omega, limits.omega_rate * step_time),
+                                        -lateral * limits.omega_max, lateral * limits.omega_max)
+                           : 0.0;
+  planned_vx_ = walking ? ramp_towards(planned_vx_, std::min(command.vx, forward_speed_bound(limits, planned_vy_, planned_omega_)),
+                                       max_speed_change())
+                        : 0.0;
   const VelocityCommand v{planned_vx_, planned_vy_, planned_omega_};
   PatternSample now;
   pattern_.sample(t, now);

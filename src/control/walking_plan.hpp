@@ -54,6 +54,8 @@ class WalkingPlan {
   WalkingState state() const { return fsm_.state(); }
   const PatternSample& sample() const { return sample_; }
   bool command_saturated() const { return command_saturated_; }  // in the last advance()
+  // The gait's speed and turn rate as planned at the last replanning (the command shaped).
+  VelocityCommand planned_velocity() const { return {planned_vx_, planned_vy_, planned_omega_}; }
   int steps_completed() const { return steps_completed_; }
   int replans_from_measured() const { return replans_from_measured_; }
   int num_planned_steps() const { return num_planned_; }

@@ -131,7 +131,11 @@ const ParameterTable<WeightShiftParams> kWeightShiftParameters = {
 const ParameterTable<CommandLimits> kCommandLimitParameters = {
     {"vx_min", &CommandLimits::vx_min, "m/s", kFinite, "feasible commands (beyond them saturated): slowest forward speed"},
     {"vx_max", &CommandLimits::vx_max, "m/s", kNonNegative,
-     "fastest forward speed (a step table lowers it to its fastest feasible row)"},
+     "fastest forward speed (a step table lowers it to its fastest row with min_zmp_margin, unless given)"},
+    {"min_zmp_margin", &CommandLimits::min_zmp_margin, "m", kNonNegative,
+     "a step table lowers vx_max to its fastest row with more than this ZMP margin"},
+    {"lateral_vx_share", &CommandLimits::lateral_vx_share, "", Check{Check::Lower::NonNegative, 1.0, true, "a share"},
+     "share of vx_max left to the forward speed at the full sideways speed or turn rate (1: no combined bound)"},
     {"vx_rate", &CommandLimits::vx_rate, "m/s²", kPositive,
      "the gait's forward speed changes by at most this × step time per step"},
     {"vy_max", &CommandLimits::vy_max, "m/s", kNonNegative, "sideways speed, either side"},
@@ -389,17 +393,24 @@ void read_controller(const YamlReader& r, const YAML::Node& c, ControllerConfig&
   if (stance != "left" && stance != "right") r.fail(c["stance"], "controller.stance", "must be left or right");
   ws.stance = stance == "left" ? Side::Left : Side::Right;
   WalkingControllerParams& w = p.walking;
-  // Before the limits: a scenario's limits.vx_max may still go beyond the table.
+  const YAML::Node limits = r.mapping(c, "controller", "limits");
+  read_section(r, limits, command_limits_section(w.plan.limits));
+  if (limits["vx_max"]) p.vx_max_given = true;
+  bool table_read = false;
   if (c["step_table"]) {
     const std::string table = resolve(r.text(c, "controller", "step_table"), r.file());
     if (fs::exists(table)) {
       w.plan.table = read_step_table(table);
-      w.plan.limits.vx_max = std::min(w.plan.limits.vx_max, fastest_feasible_speed(w.plan.table));
+      table_read = true;
     } else if (missing == MissingStepTable::Error) {
       r.fail(c["step_table"], "controller.step_table", "no such file: " + table + " (make it: biped tables --robot NAME)");
     }
   }
-  read_section(r, r.mapping(c, "controller", "limits"), command_limits_section(w.plan.limits));
+  // The table bounds vx_max (again when a later file changes the margin it asks for), unless a file
+  // gave vx_max: a scenario's may go beyond the table.
+  if (!p.vx_max_given && !w.plan.table.empty() && (table_read || limits["min_zmp_margin"])) {
+    w.plan.limits.vx_max = std::min(CommandLimits{}.vx_max, fastest_feasible_speed(w.plan.table, w.plan.limits.min_zmp_margin));
+  }
   if (c["model"]) {
     p.model_path = resolve(r.text(c, "controller", "model"), r.file());
     if (!fs::exists(p.model_path)) r.fail(c["model"], "controller.model", "no such file: " + p.model_path);

@@ -20,6 +20,7 @@ struct ControllerConfig {
   StandingControllerParams standing;
   WalkingControllerParams walking;
   WeightShiftParams weight_shift;
+  bool vx_max_given = false;  // a file gave controller.limits.vx_max: the step table does not lower it
 };
 
 struct RunConfig {

@@ -10,8 +10,22 @@ VelocityCommand saturate(const VelocityCommand& c, const CommandLimits& limits, 
   out.vx = std::clamp(c.vx, limits.vx_min, limits.vx_max);
   out.vy = std::clamp(c.vy, -limits.vy_max, limits.vy_max);
   out.omega = std::clamp(c.omega, -limits.omega_max, limits.omega_max);
+  out.vx = std::min(out.vx, std::max(0.0, forward_speed_bound(limits, out.vy, out.omega)));
   saturated = out.vx != c.vx || out.vy != c.vy || out.omega != c.omega;
   return out;
+}
+
+double forward_speed_bound(const CommandLimits& limits, double vy, double omega) {
+  const double sideways = limits.vy_max > 0.0 ? std::abs(vy) / limits.vy_max : 0.0;
+  const double turning = limits.omega_max > 0.0 ? std::abs(omega) / limits.omega_max : 0.0;
+  const double lateral = std::min(1.0, std::max(sideways, turning));
+  return limits.vx_max * (1.0 - (1.0 - limits.lateral_vx_share) * lateral);
+}
+
+double lateral_share_left(const CommandLimits& limits, double vx) {
+  const double given_up = (1.0 - limits.lateral_vx_share) * limits.vx_max;
+  if (vx <= limits.vx_max - given_up) return 1.0;
+  return std::clamp((limits.vx_max - vx) / given_up, 0.0, 1.0);
 }
 
 double ramp_towards(double current, double target, double max_change) {

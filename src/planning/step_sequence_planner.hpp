@@ -11,6 +11,10 @@ namespace biped {
 
 struct CommandLimits {
   double vx_min = -0.3, vx_max = 1.0;  // [m/s]
+  // [m] a step table bounds vx_max to its fastest row with more than this ZMP margin: LOLA's 1.0 m/s
+  // row has 0.5 mm, and reversals of the joystick between −0.3 and 1.0 m/s felled it in 7 of 10
+  // random timelines (0 of 10 bounded to its 0.8 m/s row, 45 mm).
+  double min_zmp_margin = 0.02;
   // [m/s²] the gait's forward speed changes by at most this × step time per step, starts from
   // standing and stops included: LOLA fell starting at 1.0 m/s in one step and stopping from it.
   double vx_rate = 0.5;
@@ -21,6 +25,12 @@ struct CommandLimits {
   // steps in place of one step from the outer foot straight onto the other side.
   double vy_rate = 0.15;
   double omega_rate = 0.5;
+  // Share of vx_max left to the forward speed at the full sideways speed or turn rate: the forward
+  // speed's bound falls linearly from vx_max (no sideways speed, no turn) to this share of it, as a
+  // car slows for a curve. Going faster, the plan first slows and then widens its sideways speed
+  // and turn rate (1: no such bound). LOLA bounded to 0.8 m/s fell in 6 of 10 random timelines that
+  // combine it with sideways speed or turning at their limits, none at 0.6 m/s.
+  double lateral_vx_share = 0.75;
 };
 
 // The planner's view of the joystick (kept free of the controller's types).
@@ -28,8 +38,16 @@ struct VelocityCommand {
   double vx = 0.0, vy = 0.0, omega = 0.0;
 };
 
-// Returns the command clamped to the limits; `saturated` tells whether anything was clamped.
+// Returns the command clamped to the limits, the forward speed also to the bound its sideways speed
+// and turn rate leave; `saturated` tells whether anything was clamped.
 VelocityCommand saturate(const VelocityCommand& command, const CommandLimits& limits, bool& saturated);
+
+// The bound on the forward speed that a sideways speed and a turn rate leave (lateral_vx_share).
+double forward_speed_bound(const CommandLimits& limits, double vy, double omega);
+
+// The share of the sideways speed's and the turn rate's ranges that a forward speed leaves: the
+// inverse of forward_speed_bound (1: the full ranges).
+double lateral_share_left(const CommandLimits& limits, double vx);
 
 // `current` moved towards `target` by at most `max_change`.
 double ramp_towards(double current, double target, double max_change);

@@ -26,10 +26,10 @@ StepParameters StepTable::lookup(double speed, const StepParameters& base) const
   return p;
 }
 
-double fastest_feasible_speed(const StepTable& table) {
+double fastest_feasible_speed(const StepTable& table, double min_margin) {
   double fastest = 0.0;
   for (const StepTableRow& r : table.rows) {
-    if (r.zmp_margin > 0.0) fastest = std::max(fastest, r.speed);
+    if (r.zmp_margin > min_margin) fastest = std::max(fastest, r.speed);
   }
   return fastest;
 }

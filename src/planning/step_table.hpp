@@ -24,7 +24,7 @@ struct StepTable {
   StepParameters lookup(double speed, const StepParameters& base) const;
 };
 
-// The fastest speed of the table whose choice has a positive ZMP margin (0 if none).
-double fastest_feasible_speed(const StepTable& table);
+// The fastest speed of the table whose choice has a ZMP margin above `min_margin` [m] (0 if none).
+double fastest_feasible_speed(const StepTable& table, double min_margin = 0.0);
 
 }  // namespace biped

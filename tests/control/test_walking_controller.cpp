@@ -237,6 +237,23 @@ TEST(WalkingControllerDegraded, FootholdsStayOnTheGroundThroughATransientForceSe
   }
 }
 
+// The joystick slammed between its extremes (config/scenarios/lola-joystick-slams.yaml): with the
+// command shaping's combined bound LOLA walks the timeline to its end and stands; without it (the
+// forward speed kept at 0.8 m/s while it turns and steps sideways at their limits) it falls
+// (measured: at 8.5 s; 8.5-10.3 s with sensor seeds 1-3).
+TEST(WalkingControllerCommandShaping, JoystickSlamsAreWalkedOnlyWithTheCombinedBound) {
+  for (const bool bound : {true, false}) {
+    const Scenario scenario =
+        load_scenario(test::source_path("config/scenarios/lola-joystick-slams.yaml"),
+                      bound ? std::vector<std::string>{} : std::vector<std::string>{"controller.limits.lateral_vx_share=1", "duration=12"});
+    const ScenarioResult r = run_scenario(scenario, make_run_config(scenario), "");
+    EXPECT_EQ(r.summary["fell"].get<bool>(), !bound) << r.summary.dump();
+    if (bound) {
+      EXPECT_EQ(r.summary["final_state"], "standing");
+    }
+  }
+}
+
 TEST_P(WalkingControllerTest, ACycleAllocatesNothing) {
   KinematicLoop loop(GetParam());
   WalkCommand walk;

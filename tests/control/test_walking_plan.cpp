@@ -229,6 +229,37 @@ TEST(WalkingPlan, ReversalsRampSidewaysSpeedAndTurnRateAndKeepTheFeetApart) {
   EXPECT_NEAR(largest_turn_change, max_turn_change, 1e-9) << "the ramp is what limits it";
 }
 
+// The joystick swung from full speed straight to full speed turning and sideways, and back: the
+// plan slows before it turns or steps sideways, and speeds up only as they ease off; at every cycle
+// its speed and turn rate stay inside the combined bound, and both ends are reached.
+TEST(WalkingPlan, FromFullSpeedATurnSlowsFirstAndStaysInsideTheCombinedBound) {
+  PlanFixture f;
+  const CommandLimits& limits = f.params.limits;
+  double worst = -1.0, widest_lateral_at_full_speed = 0.0;
+  const auto check = [&] {
+    const VelocityCommand v = f.plan.planned_velocity();
+    worst = std::max(worst, v.vx - forward_speed_bound(limits, v.vy, v.omega));
+    if (v.vx > limits.vx_max - 1e-9) widest_lateral_at_full_speed = std::max({widest_lateral_at_full_speed, std::abs(v.vy), std::abs(v.omega)});
+  };
+  f.run(6.0, walk(limits.vx_max), check);
+  ASSERT_NEAR(f.plan.planned_velocity().vx, limits.vx_max, 1e-12);
+  bool turned_at_full_speed = false;
+  f.run(12.0, walk(limits.vx_max, -limits.vy_max, limits.omega_max), [&] {
+    check();
+    const VelocityCommand v = f.plan.planned_velocity();
+    if (v.omega != 0.0 && v.vx > limits.vx_max - 1e-9) turned_at_full_speed = true;
+  });
+  EXPECT_FALSE(turned_at_full_speed);
+  const VelocityCommand turning = f.plan.planned_velocity();
+  EXPECT_NEAR(turning.vx, limits.lateral_vx_share * limits.vx_max, 1e-12);
+  EXPECT_NEAR(turning.vy, -limits.vy_max, 1e-12);
+  EXPECT_NEAR(turning.omega, limits.omega_max, 1e-12);
+  f.run(18.0, walk(limits.vx_max), check);
+  EXPECT_NEAR(f.plan.planned_velocity().vx, limits.vx_max, 1e-12);
+  EXPECT_LE(worst, 1e-12);
+  EXPECT_EQ(widest_lateral_at_full_speed, 0.0);
+}
+
 TEST(WalkingPlan, CommandBeyondTheLimitsIsSaturatedAndSaysSo) {
   const CommandLimits limits;
   for (const WalkCommand& beyond : {walk(limits.vx_max + 1.0), walk(limits.vx_min - 0.1), walk(0.2, limits.vy_max + 0.1),

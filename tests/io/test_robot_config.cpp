@@ -147,6 +147,10 @@ TEST(RobotConfig, SingleAndCrossKeyChecksKeepTheirMessages) {
             "test.yaml:1: key 'simulation.control_period': must be a whole multiple of simulation.timestep");
   EXPECT_EQ(config_error("controller", "{limits: {vx_max: -1}}"),
             "test.yaml:1: key 'controller.limits.vx_max': must not be negative (got -1)");
+  EXPECT_EQ(config_error("controller", "{limits: {lateral_vx_share: 1.5}}"),
+            "test.yaml:1: key 'controller.limits.lateral_vx_share': must be at most 1 (a share)");
+  EXPECT_EQ(config_error("controller", "{limits: {min_zmp_margin: -0.01}}"),
+            "test.yaml:1: key 'controller.limits.min_zmp_margin': must not be negative (got -0.01)");
   EXPECT_EQ(config_error("controller", "{sensor_limits: {frozen_cycles: 2.5}}"),
             "test.yaml:1: key 'controller.sensor_limits.frozen_cycles': expected an integer");
   EXPECT_NE(config_error("controller", "{limits: {vz_max: 1}}").find("test.yaml:1: key 'controller.limits.vz_max': unknown key"),

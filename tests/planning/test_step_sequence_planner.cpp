@@ -11,11 +11,41 @@ TEST(StepSequencePlanner, SaturatesInfeasibleCommands) {
   bool saturated = false;
   const VelocityCommand s = saturate({3.0, -1.0, 2.0}, CommandLimits{}, saturated);
   EXPECT_TRUE(saturated);
-  EXPECT_DOUBLE_EQ(s.vx, CommandLimits{}.vx_max);
+  // At the full sideways speed and turn rate the forward speed keeps its share (below).
+  EXPECT_DOUBLE_EQ(s.vx, CommandLimits{}.lateral_vx_share * CommandLimits{}.vx_max);
   EXPECT_DOUBLE_EQ(s.vy, -CommandLimits{}.vy_max);
   EXPECT_DOUBLE_EQ(s.omega, CommandLimits{}.omega_max);
   saturate({0.5, 0.0, 0.1}, CommandLimits{}, saturated);
   EXPECT_FALSE(saturated);
+}
+
+// The combined bound: the forward speed's limit falls linearly from vx_max without sideways speed
+// or turn to its share at either one's full range; walking backwards it does not apply; the share
+// of the sideways and turning ranges a forward speed leaves is its inverse.
+TEST(StepSequencePlanner, SidewaysSpeedAndTurnRateTakeForwardSpeedAway) {
+  CommandLimits limits;
+  limits.vx_max = 0.8;
+  limits.lateral_vx_share = 0.75;
+  bool saturated = false;
+  EXPECT_DOUBLE_EQ(saturate({1.0, limits.vy_max, 0.0}, limits, saturated).vx, 0.6);
+  EXPECT_TRUE(saturated);
+  EXPECT_DOUBLE_EQ(saturate({0.8, 0.0, -limits.omega_max}, limits, saturated).vx, 0.6);
+  EXPECT_TRUE(saturated);
+  EXPECT_DOUBLE_EQ(saturate({0.8, 0.5 * limits.vy_max, 0.2 * limits.omega_max}, limits, saturated).vx, 0.7);
+  EXPECT_TRUE(saturated);
+  EXPECT_DOUBLE_EQ(saturate({0.6, -limits.vy_max, limits.omega_max}, limits, saturated).vx, 0.6);
+  EXPECT_FALSE(saturated);
+  EXPECT_DOUBLE_EQ(saturate({limits.vx_min, limits.vy_max, limits.omega_max}, limits, saturated).vx, limits.vx_min);
+  EXPECT_FALSE(saturated);
+  for (double lateral : {0.0, 0.1, 0.5, 0.9, 1.0}) {
+    EXPECT_NEAR(lateral_share_left(limits, forward_speed_bound(limits, 0.0, lateral * limits.omega_max)), lateral, 1e-12);
+  }
+  EXPECT_DOUBLE_EQ(lateral_share_left(limits, 0.3), 1.0);
+  EXPECT_DOUBLE_EQ(lateral_share_left(limits, -0.3), 1.0);
+  EXPECT_DOUBLE_EQ(lateral_share_left(limits, 0.9), 0.0);
+  limits.lateral_vx_share = 1.0;
+  EXPECT_DOUBLE_EQ(saturate({0.8, limits.vy_max, limits.omega_max}, limits, saturated).vx, 0.8);
+  EXPECT_DOUBLE_EQ(lateral_share_left(limits, 0.8), 1.0);
 }
 
 TEST(StepSequencePlanner, StraightStepsAdvanceByVelocityTimesStepTime) {

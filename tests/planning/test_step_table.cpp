@@ -20,5 +20,16 @@ TEST(StepTable, InterpolatesBetweenRowsAndHoldsBeyondTheEnds) {
   EXPECT_NEAR(StepTable{}.lookup(0.5, base).step_time, base.step_time, 1e-12) << "an empty table keeps the base";
 }
 
+// The fastest row counts only with more than the required ZMP margin.
+TEST(StepTable, FastestFeasibleSpeedNeedsMoreThanTheRequiredMargin) {
+  StepTable table;
+  table.rows = {{0.0, 0.8, 0.2, 0.04, 0.07}, {0.5, 0.7, 0.2, 0.04, 0.05}, {0.8, 0.6, 0.2, 0.04, 0.03},
+                {0.9, 0.55, 0.2, 0.04, 0.01}, {1.0, 0.5, 0.2, 0.04, 0.0005}, {1.1, 0.5, 0.2, 0.04, -0.01}};
+  EXPECT_DOUBLE_EQ(fastest_feasible_speed(table), 1.0);
+  EXPECT_DOUBLE_EQ(fastest_feasible_speed(table, 0.005), 0.9);
+  EXPECT_DOUBLE_EQ(fastest_feasible_speed(table, 0.02), 0.8);
+  EXPECT_DOUBLE_EQ(fastest_feasible_speed(table, 0.1), 0.0) << "none";
+}
+
 }  // namespace
 }  // namespace biped

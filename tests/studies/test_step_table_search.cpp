@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <yaml-cpp/yaml.h>
+
 #include "io/robot_config.hpp"
 #include "test_support.hpp"
 
@@ -19,7 +21,8 @@ TEST(StepTableSearch, CriterionPrefersFeasibleGaitsWithZmpMargin) {
   EXPECT_FALSE(hard.feasible && hard.zmp_margin > 0.0);
 }
 
-// The shipped tables exist for both robots and bound the accepted commands.
+// The shipped tables exist for both robots and bound the accepted commands to their fastest row
+// with the required ZMP margin; a scenario's own vx_max goes beyond it.
 TEST(StepTableSearch, ShippedTablesBoundTheCommands) {
   for (const char* robot : {"lola", "johnnie"}) {
     Scenario s;
@@ -29,8 +32,12 @@ TEST(StepTableSearch, ShippedTablesBoundTheCommands) {
     const RunConfig config = make_run_config(s);
     const StepTable& table = config.controller.walking.plan.table;
     ASSERT_FALSE(table.empty()) << robot;
-    EXPECT_DOUBLE_EQ(config.controller.walking.plan.limits.vx_max, fastest_feasible_speed(table));
-    EXPECT_GE(fastest_feasible_speed(table), 0.6) << robot;
+    const CommandLimits& limits = config.controller.walking.plan.limits;
+    EXPECT_DOUBLE_EQ(limits.vx_max, fastest_feasible_speed(table, limits.min_zmp_margin));
+    EXPECT_GE(limits.vx_max, 0.6) << robot;
+    EXPECT_LT(limits.vx_max, fastest_feasible_speed(table)) << robot << ": its fastest row has less margin";
+    s.controller["limits"]["vx_max"] = 1.0;
+    EXPECT_DOUBLE_EQ(make_run_config(s).controller.walking.plan.limits.vx_max, 1.0) << robot;
   }
 }
 
