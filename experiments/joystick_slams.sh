@@ -4,7 +4,9 @@
 # {-0.15, 0, 0.15} m/s and ω from {-0.5, 0, 0.5} rad/s, until 16 s, then a stop; run with
 # `biped run`. Prints one line per run and the count without a fall. The timelines are the same on
 # every machine (Python's random, seeded); each run's sensor seed is seed % 97 + 1.
-#   [ROBOT=lola] experiments/joystick_slams.sh [FIRST_SEED [COUNT]] [-- --set KEY=VALUE ...]
+# With PERIOD set, one timeline instead: full reversals on every axis, (0.8, 0.15, 0.5) and
+# (-0.3, -0.15, -0.5) alternating every PERIOD s from 1 s to 15 s, then a stop (sensor seed FIRST_SEED).
+#   [ROBOT=lola] [PERIOD=0.5] experiments/joystick_slams.sh [FIRST_SEED [COUNT]] [-- --set KEY=VALUE ...]
 # docs/walking.md ("Command shaping") quotes seeds 2000-2009 (the training set) and 3000-3019.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -16,9 +18,21 @@ shift $(( $# > 2 ? 2 : $# ))
 [ "${1:-}" = "--" ] && shift
 OUT=${OUT:-out/joystick-slams}
 mkdir -p "$OUT"
-python3 - "$FIRST" "$COUNT" "$OUT" "$ROBOT" <<'PY'
+PERIOD=${PERIOD:-}
+[ -n "$PERIOD" ] && COUNT=1
+python3 - "$FIRST" "$COUNT" "$OUT" "$ROBOT" "$PERIOD" <<'PY'
 import random, sys
-first, count, out, robot = int(sys.argv[1]), int(sys.argv[2]), sys.argv[3], sys.argv[4]
+first, count, out, robot, period = int(sys.argv[1]), int(sys.argv[2]), sys.argv[3], sys.argv[4], sys.argv[5]
+if period:
+    t, k, lines = 1.0, 0, ["  - {t: 0.0, vx: 0.0}"]
+    while t < 15:
+        lines.append("  - {t: %.2f, vx: %s, vy: %s, omega: %s}" % ((t,) + ((0.8, 0.15, 0.5) if k % 2 == 0 else (-0.3, -0.15, -0.5))))
+        t += float(period)
+        k += 1
+    lines.append("  - {t: 15.0, stop: true}")
+    with open("%s/slam-%s-%d.yaml" % (out, robot, first), "w") as f:
+        f.write("name: reversals-%s\nrobot: %s\nduration: 19\nseed: %d\ncommands:\n%s\n" % (period, robot, first, "\n".join(lines)))
+    sys.exit(0)
 for seed in range(first, first + count):
     r = random.Random(seed)
     t, lines = 1.0, ["  - {t: 0.0, vx: 0.0}"]
