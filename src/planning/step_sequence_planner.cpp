@@ -10,7 +10,7 @@ VelocityCommand saturate(const VelocityCommand& c, const CommandLimits& limits, 
   out.vx = std::clamp(c.vx, limits.vx_min, limits.vx_max);
   out.vy = std::clamp(c.vy, -limits.vy_max, limits.vy_max);
   out.omega = std::clamp(c.omega, -limits.omega_max, limits.omega_max);
-  out.vx = std::min(out.vx, std::max(0.0, forward_speed_bound(limits, out.vy, out.omega)));
+  out.vx = std::min(out.vx, forward_speed_bound(limits, out.vy, out.omega));
   saturated = out.vx != c.vx || out.vy != c.vy || out.omega != c.omega;
   return out;
 }

@@ -28,8 +28,9 @@ struct CommandLimits {
   // Share of vx_max left to the forward speed at the full sideways speed or turn rate: the forward
   // speed's bound falls linearly from vx_max (no sideways speed, no turn) to this share of it, as a
   // car slows for a curve. Going faster, the plan first slows and then widens its sideways speed
-  // and turn rate (1: no such bound). LOLA bounded to 0.8 m/s fell in 6 of 10 random timelines that
-  // combine it with sideways speed or turning at their limits, none at 0.6 m/s.
+  // and turn rate (1: no such bound). LOLA bounded to 0.8 m/s fell in 7 of 10 random timelines that
+  // slam all three at their limits (6 without turning, 4 without sideways speed), none with vx at
+  // most 0.6 m/s.
   double lateral_vx_share = 0.75;
 };
 
