@@ -32,10 +32,14 @@ Eigen::Quaterniond CoMEstimator::upper_body_on_flat_foot(const Eigen::VectorXd& 
 void CoMEstimator::update(const SensorData& sensors, const BodyFrames& encoders, Side stance, double dt) {
   const Eigen::Vector2d estimate = com_from_foot(encoders, sensors.imu_orientation, stance).head<2>();
   const double filter = dt / (0.01 + dt);
-  if (!has_estimate_ || stance != stance_) {
+  if (!has_estimate_) {
+    rate_.setZero();
+    carried_rate_.setZero();
+  } else if (stance != stance_) {
     rate_.setZero();
   } else {
     rate_ += filter * ((estimate - estimate_) / dt - rate_);
+    carried_rate_ += filter * ((estimate - estimate_) / dt - carried_rate_);
   }
   estimate_ = estimate;
   stance_ = stance;

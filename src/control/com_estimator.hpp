@@ -30,6 +30,11 @@ class CoMEstimator {
   void update(const SensorData& sensors, const BodyFrames& encoders, Side stance, double dt);
   const Eigen::Vector2d& estimate() const { return estimate_; }  // [m], heading frame (x forward, y left)
   const Eigen::Vector2d& rate() const { return rate_; }          // [m/s]
+  // The same rate carried over a change of stance foot instead of restarted (both feet stand there,
+  // so the CoM moves against either alike): the hip strategy's DCM error. Restarted, the rate reads
+  // as a DCM error of −v/ω₀ at every change (docs/stabilizer.md); eq. (10) keeps the restarting
+  // rate its gains were tuned with.
+  const Eigen::Vector2d& carried_rate() const { return carried_rate_; }  // [m/s]
 
  private:
   const RobotModel& model_;
@@ -38,6 +43,7 @@ class CoMEstimator {
   BodyFrames frames_;
   Eigen::Vector2d estimate_ = Eigen::Vector2d::Zero();
   Eigen::Vector2d rate_ = Eigen::Vector2d::Zero();
+  Eigen::Vector2d carried_rate_ = Eigen::Vector2d::Zero();
   Side stance_ = Side::Left;
   bool has_estimate_ = false;
 };

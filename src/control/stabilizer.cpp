@@ -59,9 +59,9 @@ void Stabilizer::contact_force_modification(const StabilizerInput& in, double ti
                                             double rate_sagittal, double rate_lateral) {
   const Eigen::Vector2d& com_error = in.com_error;
   const Eigen::Vector2d& com_rate_error = in.com_rate_error;
-  // Δx_IN = planned − measured; the plan keeps the upper body upright. Leaning forward, or the CoM
-  // ahead of the plan, moves the desired CoP forward (T_y = −x_CoP F_z); leaning left, or the CoM
-  // left of the plan, moves it left (T_x = y_CoP F_z).
+  // Δx_IN = planned − measured; the tilt arguments are measured − planned inclination. Leaning
+  // forward, or the CoM ahead of the plan, moves the desired CoP forward (T_y = −x_CoP F_z);
+  // leaning left, or the CoM left of the plan, moves it left (T_x = y_CoP F_z).
   const double correction_y = params_.tilt_gain * (-tilt_sagittal) + params_.tilt_rate_gain * (-rate_sagittal) +
                               params_.com_gain * com_error.x() + params_.com_rate_gain * com_rate_error.x();
   const double correction_x = -(params_.tilt_gain * (-tilt_lateral) + params_.tilt_rate_gain * (-rate_lateral) +
@@ -147,7 +147,10 @@ double Stabilizer::contact_stiffness() const {
 void Stabilizer::step(double dt, const StabilizerInput& in) {
   const math::TiltAngles tilt = math::tilt_against_gravity(in.imu_orientation.toRotationMatrix());
   // Small-angle rates of the two tilt angles from the body-frame angular rate.
-  contact_force_modification(in, tilt.sagittal, tilt.lateral, in.imu_rate.y(), -in.imu_rate.x());
+  // The tilt against the planned inclination (the upper body's lean, zero in the paper).
+  contact_force_modification(in, tilt.sagittal - in.upper_body_lean.x(), tilt.lateral - in.upper_body_lean.y(),
+                             in.imu_rate.y() - in.upper_body_lean_rate.x(),
+                             -in.imu_rate.x() - in.upper_body_lean_rate.y());
   if (first_) previous_desired_ = desired_;
   first_ = false;
   const double filter = dt / (params_.contact_filter_time + dt);

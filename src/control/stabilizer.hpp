@@ -65,6 +65,10 @@ struct StabilizerInput {
   // left) [m], and its rate [m/s]: eq. (10)'s Δr_CoM.
   Eigen::Vector2d com_error = Eigen::Vector2d::Zero();
   Eigen::Vector2d com_rate_error = Eigen::Vector2d::Zero();
+  // The upper body's planned inclination (sagittal, lateral: math::tilt_against_gravity's angles)
+  // [rad] and its rate [rad/s]: zero in the paper; the hip strategy's lean (control/upper_body_lean).
+  Eigen::Vector2d upper_body_lean = Eigen::Vector2d::Zero();
+  Eigen::Vector2d upper_body_lean_rate = Eigen::Vector2d::Zero();
 };
 
 // Per-foot modification of the position-controlled foot coordinates (foot frame).

@@ -46,9 +46,13 @@ void TaskReference::reset(const TaskSpaceData& start, double heading) {
 }
 
 // Table I coordinates of the pattern sample (see model/task_space.hpp for the rows).
-void TaskReference::update(const PatternSample& s, const TerrainAdaptation& terrain, const TaskSpaceData& kinematic_state) {
+void TaskReference::update(const PatternSample& s, const TerrainAdaptation& terrain, const UpperBodyLean& lean,
+                           const TaskSpaceData& kinematic_state) {
   const TaskLayout& L = space_.layout();
   const Eigen::Matrix3d heading = yaw_rotation(s.heading);
+  const Eigen::Vector3d lean_vector = lean.rotation_vector();
+  const Eigen::Vector3d lean_rate = lean.angular_rate();
+  const Eigen::Matrix3d lean_rotation = math::so3::exp(lean_vector);
   for (Side side : kSides) {
     const int k = index_of(side);
     const FootReference& foot = s.feet[k];
@@ -59,11 +63,18 @@ void TaskReference::update(const PatternSample& s, const TerrainAdaptation& terr
     // The terrain adaptation's tilt is about the foot's lateral axis, its roll about the forward
     // axis, turned into the heading frame.
     const Eigen::Matrix3d to_heading = yaw_rotation(math::wrap_angle(foot.yaw - s.heading));
-    x_id_.segment<3>(L.foot_orientation[k]) = to_heading * Eigen::Vector3d(terrain.foot_roll(k), terrain.foot_tilt(k), 0.0);
-    x_id_[L.foot_orientation[k] + 2] = math::wrap_angle(foot.yaw - s.heading);
-    xdot_id_.segment<3>(L.foot_orientation[k]) =
-        to_heading * Eigen::Vector3d(terrain.foot_roll_rate(k), terrain.foot_tilt_rate(k), 0.0);
-    xdot_id_[L.foot_orientation[k] + 2] = foot.yaw_rate - s.heading_rate;
+    Eigen::Vector3d foot_in_heading = to_heading * Eigen::Vector3d(terrain.foot_roll(k), terrain.foot_tilt(k), 0.0);
+    foot_in_heading.z() = math::wrap_angle(foot.yaw - s.heading);
+    Eigen::Vector3d foot_rate = to_heading * Eigen::Vector3d(terrain.foot_roll_rate(k), terrain.foot_tilt_rate(k), 0.0);
+    foot_rate.z() = foot.yaw_rate - s.heading_rate;
+    // Relative to the leaning upper body: log(exp(−φ_lean) exp(φ_foot)), its rate to first order.
+    if (lean.angle().isZero()) {
+      x_id_.segment<3>(L.foot_orientation[k]) = foot_in_heading;
+    } else {
+      const Eigen::Matrix3d relative = lean_rotation.transpose() * math::so3::exp(foot_in_heading);
+      x_id_.segment<3>(L.foot_orientation[k]) = math::so3::log(Eigen::Quaterniond(relative));
+    }
+    xdot_id_.segment<3>(L.foot_orientation[k]) = foot_rate - lean_rate;
     // Arms swing against the legs: the right arm forward with the left leg.
     const double swing = side == Side::Right ? s.arm_swing : -s.arm_swing;
     const double swing_rate = side == Side::Right ? s.arm_swing_rate : -s.arm_swing_rate;
@@ -74,15 +85,16 @@ void TaskReference::update(const PatternSample& s, const TerrainAdaptation& terr
     const double radius = std::max(0.05, std::hypot(lever.x(), lever.z()));
     const double angle = swing / radius, angle_rate = swing_rate / radius;
     const Eigen::Vector3d swung = Eigen::AngleAxisd(-angle, Eigen::Vector3d::UnitY()) * lever;
-    const Eigen::Vector3d offset = heading * (arm_pivot_[k] + swung);
+    const Eigen::Vector3d offset = heading * lean_rotation * (arm_pivot_[k] + swung);
     const Eigen::Vector3d arm = body + offset - kinematic_state.com;
     const Eigen::Vector3d arm_rate = s.heading_rate * Eigen::Vector3d::UnitZ().cross(offset) +
-                                     heading * (-angle_rate * Eigen::Vector3d::UnitY().cross(swung));
+                                     heading * (lean_rate.cross(lean_rotation * (arm_pivot_[k] + swung)) +
+                                                lean_rotation * (-angle_rate * Eigen::Vector3d::UnitY().cross(swung)));
     x_id_.segment(L.arm_com[k], L.arm_com_rows) = arm.head(L.arm_com_rows);
     xdot_id_.segment(L.arm_com[k], L.arm_com_rows) = arm_rate.head(L.arm_com_rows);
   }
-  x_id_.segment<3>(L.upper_body_orientation).setZero();
-  xdot_id_.segment<3>(L.upper_body_orientation) << 0.0, 0.0, s.heading_rate;
+  x_id_.segment<3>(L.upper_body_orientation) = lean_vector;
+  xdot_id_.segment<3>(L.upper_body_orientation) = lean_rate + Eigen::Vector3d(0.0, 0.0, s.heading_rate);
   x_id_.segment<3>(L.com) = s.com;
   xdot_id_.segment<3>(L.com) = s.com_velocity;
   x_id_[L.com + 2] += terrain.com_offset();

@@ -8,6 +8,7 @@
 
 #include "control/stabilizer.hpp"
 #include "control/terrain_adaptation.hpp"
+#include "control/upper_body_lean.hpp"
 #include "model/task_space.hpp"
 #include "planning/walking_pattern_generator.hpp"
 
@@ -23,8 +24,11 @@ class TaskReference {
   void reset(const TaskSpaceData& start, double heading);
 
   // x_id, ẋ_id for the pattern sample. `kinematic_state` is eq. (21)'s own state of the last cycle:
-  // the arms are placed relative to its upper body and CoM.
-  void update(const PatternSample& s, const TerrainAdaptation& terrain, const TaskSpaceData& kinematic_state);
+  // the arms are placed relative to its upper body and CoM. The upper body leans by `lean` (zero
+  // in the paper); the feet's orientations, relative to it, turn back so the feet keep theirs, and
+  // the arms turn with it.
+  void update(const PatternSample& s, const TerrainAdaptation& terrain, const UpperBodyLean& lean,
+              const TaskSpaceData& kinematic_state);
 
   // Δx, Δẋ: each foot's height and tilt modification (foot frame) in its task rows, the tilt
   // turned into the upper body's heading frame.

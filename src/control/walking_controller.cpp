@@ -27,6 +27,7 @@ WalkingController::WalkingController(const RobotModel& model, const WalkingContr
       stabilizer_(model, params.stabilization),
       terrain_(model, params.terrain),
       step_adaptation_(params.step_adaptation),
+      lean_(params.upper_body_lean),
       com_estimator_(model),
       encoders_(model),
       monitor_(model, params.sensor_limits),
@@ -41,6 +42,7 @@ void WalkingController::reset(const SensorData& first) {
   stabilizer_.reset();
   terrain_.reset();
   step_adaptation_.reset();
+  lean_.reset();
   monitor_.reset(first);
   calibration_.reset(first.time);
   attitude_.reset();
@@ -101,7 +103,7 @@ void WalkingController::step(const SensorData& raw_sensors, const WalkCommand& c
   adapt_steps(sensors);
   const PatternSample& sample = plan_.advance(sensors.time - start_time_, command);
   adapt_to_terrain(sensors);
-  reference_.update(sample, terrain_, rmrc_.task());
+  reference_.update(sample, terrain_, lean_, rmrc_.task());
   stabilize(sensors);
   resolve_rates(out);
   publish_status();
@@ -143,7 +145,9 @@ const SensorData& WalkingController::detect_faults(const SensorData& raw) {
 }
 
 bool WalkingController::detect_fall(const SensorData& sensors) {
-  if (math::tilt_from_vertical(sensors.imu_orientation.toRotationMatrix()) <= params_.fall_tilt) return false;
+  // The upper body's own lean (the hip strategy) is not a fall.
+  if (math::tilt_from_vertical(sensors.imu_orientation.toRotationMatrix()) <= params_.fall_tilt + lean_.angle().norm())
+    return false;
   plan_.enter_fallen();
   return true;
 }
@@ -225,12 +229,22 @@ void WalkingController::stabilize(const SensorData& sensors) {
     in.measured = sensors.foot_wrench;
     in.imu_orientation = sensors.imu_orientation;
     in.imu_rate = sensors.imu_angular_rate;
+    // The lean follows this cycle's DCM error (measured − planned, relative to the stance foot,
+    // with the rate carried over changes of stance foot); the task reference takes it up in the
+    // next cycle, eq. (10)'s tilt error now.
+    const double com_height = s.com.z() - foot.position.z() + plan_.pattern_generator().params().ankle_height;
+    const double omega = std::sqrt(model_.gravity() / std::max(com_height, 1e-3));
+    const Eigen::Vector2d planned_rate = to_heading * (s.com_velocity - foot.velocity).head<2>();
+    lean_.update(params_.rmrc.dt, -in.com_error + (com_estimator_.carried_rate() - planned_rate) / omega, true);
+    in.upper_body_lean = lean_.angle();
+    in.upper_body_lean_rate = lean_.rate();
     stabilizer_.update_contact_model(sensors.joint_position, sensors.foot_wrench);
     stabilizer_.step(params_.rmrc.dt, in);
     reference_.set_modification(s, stabilizer_.modification());
-  } else if (!uses_sensors()) {
+  } else {
+    lean_.update(params_.rmrc.dt, Eigen::Vector2d::Zero(), false);
     // Without force feedback the feet's modifications return to the plan.
-    reference_.decay_modification(std::exp(-params_.stabilization.position_gain * params_.rmrc.dt));
+    if (!uses_sensors()) reference_.decay_modification(std::exp(-params_.stabilization.position_gain * params_.rmrc.dt));
   }
   timing_.stabilizer_us = std::chrono::duration<double, std::micro>(Clock::now() - start).count();
 }
@@ -259,6 +273,7 @@ void WalkingController::publish_status() {
   status_.num_planned_steps = plan_.num_planned_steps();
   status_.dcm_error = step_adaptation_.dcm_error();
   status_.landing_shift = step_adaptation_.shift();
+  status_.upper_body_lean = lean_.angle();
   for (int k = 0; k < 2; ++k) {
     status_.foot_height_offset[k] = terrain_.foot_offset(k);
     status_.foot_tilt[k] = terrain_.foot_tilt(k);

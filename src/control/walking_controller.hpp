@@ -13,6 +13,7 @@
 #include "control/sensor_monitor.hpp"
 #include "control/stabilizer.hpp"
 #include "control/step_adaptation.hpp"
+#include "control/upper_body_lean.hpp"
 #include "control/task_reference.hpp"
 #include "control/terrain_adaptation.hpp"
 #include "control/walking_plan.hpp"
@@ -29,6 +30,7 @@ struct WalkingControllerParams {
   StabilizerParams stabilization;
   TerrainAdaptationParams terrain;  // used with the stabilizer (it needs the F/T sensors)
   StepAdaptationParams step_adaptation;  // used with the stabilizer (it needs the state estimate)
+  UpperBodyLeanParams upper_body_lean;   // the hip strategy; used with the stabilizer, as the step adaptation
   SensorLimits sensor_limits;
   SensorCalibrationParams calibration;  // IMU and F/T errors estimated and removed (an extension)
   AttitudeEstimatorParams attitude;     // roll and pitch aided by the leg kinematics (an extension)
@@ -60,6 +62,7 @@ class WalkingController final : public Controller {
   const TerrainAdaptation& terrain() const { return terrain_; }
   const SensorCalibration& calibration() const { return calibration_; }
   const StepAdaptation& step_adaptation() const { return step_adaptation_; }
+  const UpperBodyLean& upper_body_lean() const { return lean_; }
   const CycleTiming& timing() const { return timing_; }
   // The inputs eq. (21) got in the last cycle (to replay them, e.g. in the SVD baseline).
   const Eigen::VectorXd& task_reference() const { return reference_.x(); }
@@ -81,7 +84,8 @@ class WalkingController final : public Controller {
   void adapt_steps(const SensorData& sensors);
   // The footholds' and the CoM's heights from the F/T sensors (both needed).
   void adapt_to_terrain(const SensorData& sensors);
-  // eqs. (10)–(20) with the state estimate: the feet's modification Δx_λ of eq. (21)'s reference.
+  // eqs. (10)–(20) with the state estimate: the feet's modification Δx_λ of eq. (21)'s reference;
+  // and the upper body's lean (the hip strategy, control/upper_body_lean).
   void stabilize(const SensorData& sensors);
   // eq. (21): the joint set-points, held when the rates come out non-finite.
   void resolve_rates(JointCommand& out);
@@ -99,6 +103,7 @@ class WalkingController final : public Controller {
   Stabilizer stabilizer_;
   TerrainAdaptation terrain_;
   StepAdaptation step_adaptation_;
+  UpperBodyLean lean_;
   CoMEstimator com_estimator_;
   EncoderKinematics encoders_;  // this cycle's frames of the (fault-checked) encoder angles
   SensorMonitor monitor_;

@@ -55,6 +55,8 @@ struct ControllerStatus {
   // step in the air [m], heading frame (x forward, y left).
   Eigen::Vector2d dcm_error = Eigen::Vector2d::Zero();
   Eigen::Vector2d landing_shift = Eigen::Vector2d::Zero();
+  // The hip strategy's planned lean of the upper body (sagittal, lateral, as upper_body_tilt) [rad].
+  Eigen::Vector2d upper_body_lean = Eigen::Vector2d::Zero();
 };
 
 class Controller {

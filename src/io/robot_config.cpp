@@ -308,6 +308,20 @@ const ParameterTable<StepAdaptationParams> kStepAdaptationParameters = {
      "step timing: DCM error beyond the dead band at the end of a swing that makes the next steps quick"},
 };
 
+const ParameterTable<UpperBodyLeanParams> kUpperBodyLeanParameters = {
+    {"enabled", &UpperBodyLeanParams::enabled, "", {}, "hip strategy: the upper body leans towards a large DCM error (with the stabilizer)"},
+    {"gain", &UpperBodyLeanParams::gain, "rad/m", kNonNegative, "lean per metre of DCM error beyond the dead band"},
+    {"dead_band_forward", &UpperBodyLeanParams::dead_band_forward, "m", kNonNegative,
+     "DCM error along the heading that does not lean the upper body"},
+    {"dead_band_sideways", &UpperBodyLeanParams::dead_band_sideways, "m", kNonNegative, "... sideways"},
+    {"max_angle", &UpperBodyLeanParams::max_angle, "rad", kNonNegative, "bound of the lean about each axis"},
+    {"frequency", &UpperBodyLeanParams::frequency, "rad/s", kPositive,
+     "natural frequency of the critically damped filter the lean follows"},
+    {"return_frequency", &UpperBodyLeanParams::return_frequency, "rad/s", kPositive,
+     "... when the lean goes back towards upright"},
+    {"max_rate", &UpperBodyLeanParams::max_rate, "rad/s", kPositive, "bound of the lean's rate about each axis"},
+};
+
 ParameterSection simulation_section(SimulationParams& p) {
   return {"simulation",
           {{kWorldParameters, p.world}, {kSimulationParameters, p}, {kSoleContactParameters, p.sole_contact}},
@@ -329,7 +343,7 @@ ParameterSection controller_section(ControllerConfig& p) {
            {kStandingParameters, p.standing},
            {kWeightShiftParameters, p.weight_shift}},
           {"type", "model", "stance", "step_table", "limits", "stabilization", "sensor_limits", "terrain_adaptation",
-           "step_adaptation", "calibration", "attitude_estimation"}};
+           "step_adaptation", "upper_body_lean", "calibration", "attitude_estimation"}};
 }
 ParameterSection command_limits_section(CommandLimits& p) {
   return {"controller.limits", {{kCommandLimitParameters, p}}, {}};
@@ -351,6 +365,9 @@ ParameterSection terrain_adaptation_section(TerrainAdaptationParams& p) {
 }
 ParameterSection step_adaptation_section(StepAdaptationParams& p) {
   return {"controller.step_adaptation", {{kStepAdaptationParameters, p}}, {}};
+}
+ParameterSection upper_body_lean_section(UpperBodyLeanParams& p) {
+  return {"controller.upper_body_lean", {{kUpperBodyLeanParameters, p}}, {}};
 }
 
 void read_simulation(const YamlReader& r, const YAML::Node& sim, SimulationParams& p) {
@@ -420,6 +437,7 @@ void read_controller(const YamlReader& r, const YAML::Node& c, ControllerConfig&
   read_section(r, r.mapping(c, "controller", "sensor_limits"), sensor_limits_section(w.sensor_limits));
   read_section(r, r.mapping(c, "controller", "terrain_adaptation"), terrain_adaptation_section(w.terrain));
   read_section(r, r.mapping(c, "controller", "step_adaptation"), step_adaptation_section(w.step_adaptation));
+  read_section(r, r.mapping(c, "controller", "upper_body_lean"), upper_body_lean_section(w.upper_body_lean));
   read_section(r, r.mapping(c, "controller", "calibration"), calibration_section(w.calibration));
   read_section(r, r.mapping(c, "controller", "attitude_estimation"), attitude_section(w.attitude));
 }
@@ -577,7 +595,8 @@ std::vector<ParameterDoc> parameter_reference() {
                             sensor_noise_section(sim.noise_levels), controller_section(controller),
                             command_limits_section(w.plan.limits), stabilization_section(w.stabilization),
                             sensor_limits_section(w.sensor_limits), terrain_adaptation_section(w.terrain),
-                            step_adaptation_section(w.step_adaptation), calibration_section(w.calibration),
+                            step_adaptation_section(w.step_adaptation), upper_body_lean_section(w.upper_body_lean),
+                            calibration_section(w.calibration),
                             attitude_section(w.attitude)});
 }
 

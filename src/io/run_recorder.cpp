@@ -67,7 +67,7 @@ RunRecorder::RunRecorder(const Simulation& sim, std::ostream* csv) : csv_(csv) {
   }
   o << ",imu_phi_x_deg,imu_phi_y_deg";
   o << ",dcm_error_x,dcm_error_y,landing_shift_x,landing_shift_y";
-  o << ",est_phi_x_deg,est_phi_y_deg";
+  o << ",est_phi_x_deg,est_phi_y_deg,lean_x_deg,lean_y_deg";
   for (int i = 0; i < sim.plant().mj()->nq; ++i) o << ",qpos_" << i;
   o << '\n';
 }
@@ -147,6 +147,8 @@ void RunRecorder::record(const Simulation& sim, const SensorData& sensors, const
   row.comma().fixed(status.landing_shift.x(), 5).comma().fixed(status.landing_shift.y(), 5);
   // The tilt as the controller uses it (after its sensor calibration).
   row.comma().fixed(status.upper_body_tilt[0] * kRadToDeg, 4).comma().fixed(status.upper_body_tilt[1] * kRadToDeg, 4);
+  // The upper body's planned lean (hip strategy), sagittal and lateral as the tilts.
+  row.comma().fixed(status.upper_body_lean.x() * kRadToDeg, 4).comma().fixed(status.upper_body_lean.y() * kRadToDeg, 4);
   for (int i = 0; i < m->nq; ++i) row.comma().general(d->qpos[i], 7);
   row_ += '\n';
   *csv_ << row_;

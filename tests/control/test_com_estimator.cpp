@@ -68,7 +68,8 @@ struct LeaningLegs {
 };
 
 // The rate starts from zero: at the first update, after reset(), and after a change of stance foot
-// (the estimate jumps to the other foot: no rate from that jump).
+// (the estimate jumps to the other foot: no rate from that jump); the carried rate only at the
+// first update and after reset(): it goes on through the change.
 TEST(CoMEstimator, RateRestartsFromZeroAtTheFirstUpdateAndAtAStanceChange) {
   const RobotModel model = test::load_model("lola");
   CoMEstimator estimator(model);
@@ -79,8 +80,12 @@ TEST(CoMEstimator, RateRestartsFromZeroAtTheFirstUpdateAndAtAStanceChange) {
   for (int i = 1; i <= 20; ++i) legs.step(estimator, i * dt, Side::Left, dt);
   EXPECT_GT(estimator.rate().norm(), 0.01) << "moving";
 
+  const Eigen::Vector2d moving = estimator.carried_rate();
+  EXPECT_EQ(moving, estimator.rate()) << "the same rate until a change of stance foot";
+
   legs.step(estimator, 21 * dt, Side::Right, dt);
   EXPECT_EQ(estimator.rate(), Eigen::Vector2d::Zero());
+  EXPECT_EQ(estimator.carried_rate(), moving) << "carried over: the jump to the other foot is no motion";
   EXPECT_LT((estimator.estimate() -
              estimator.com_from_foot(legs.encoders.frames(), legs.sensors.imu_orientation, Side::Right).head<2>())
                 .norm(),
@@ -89,9 +94,12 @@ TEST(CoMEstimator, RateRestartsFromZeroAtTheFirstUpdateAndAtAStanceChange) {
   legs.step(estimator, 22 * dt, Side::Right, dt);
   EXPECT_GT(estimator.rate().norm(), 0.0);
 
+  EXPECT_LT((estimator.carried_rate() - moving).norm(), 0.1 * moving.norm()) << "no rate from the jump";
+
   estimator.reset();
   legs.step(estimator, 23 * dt, Side::Right, dt);
   EXPECT_EQ(estimator.rate(), Eigen::Vector2d::Zero());
+  EXPECT_EQ(estimator.carried_rate(), Eigen::Vector2d::Zero());
 }
 
 // Once its filter (10 ms) has settled, the rate is the estimate's finite difference: the CoM's

@@ -8,6 +8,7 @@
 
 #include <cmath>
 
+#include "math/rotations.hpp"
 #include "test_support.hpp"
 
 namespace biped {
@@ -58,13 +59,14 @@ class TaskReferenceTest : public ::testing::TestWithParam<std::string> {
   TaskSpaceData start;
   const TaskLayout& L;
   TerrainAdaptation flat;  // fresh: zero offsets and tilts
+  UpperBodyLean upright{UpperBodyLeanParams{}};  // fresh: no lean
 };
 
 TEST_P(TaskReferenceTest, FootAndComRowsAreThePatternsOnFlatGround) {
   TaskReference ref(space);
   ref.reset(start, 0.0);
   const PatternSample s = walking_sample();
-  ref.update(s, flat, start);
+  ref.update(s, flat, upright, start);
   const Eigen::VectorXd& x = ref.x();
   const Eigen::VectorXd& xd = ref.rate();
   for (int k = 0; k < 2; ++k) {
@@ -87,10 +89,11 @@ void expect_terrain_only_in_its_rows(const TaskSpace& space, const TerrainAdapta
                                      const TaskSpaceData& start) {
   const TaskLayout& L = space.layout();
   TaskReference with(space), without(space);
+  const UpperBodyLean upright{UpperBodyLeanParams{}};
   with.reset(start, 0.0);
   without.reset(start, 0.0);
-  with.update(s, terrain, start);
-  without.update(s, flat, start);
+  with.update(s, terrain, upright, start);
+  without.update(s, flat, upright, start);
   Eigen::VectorXd expected = Eigen::VectorXd::Zero(space.dim());
   Eigen::VectorXd expected_rate = Eigen::VectorXd::Zero(space.dim());
   for (int k = 0; k < 2; ++k) {
@@ -165,11 +168,45 @@ TEST_P(TaskReferenceTest, ArmRowsWithoutSwingAreTheStartOffsets) {
     PatternSample s = walking_sample();
     s.heading = heading;
     s.arm_swing = 0.0;
-    ref.update(s, flat, turned_start);
+    ref.update(s, flat, upright, turned_start);
     for (int k = 0; k < 2; ++k) {
       const Eigen::VectorXd row = ref.x().segment(L.arm_com[k], L.arm_com_rows);
       const Eigen::VectorXd at_start = turned_start.x.segment(L.arm_com[k], L.arm_com_rows);
       EXPECT_LT((row - at_start).norm(), 1e-12) << "heading " << heading << " arm " << k;
+    }
+  }
+}
+
+// A leaning upper body: its orientation rows are the lean, the feet's (relative to it) turn back so
+// that each foot keeps its orientation in the heading frame, and the arms turn with it.
+TEST_P(TaskReferenceTest, LeaningUpperBodyKeepsTheFeetAndTurnsTheArms) {
+  UpperBodyLeanParams params;
+  params.enabled = true;
+  UpperBodyLean leaning(params);
+  for (int k = 0; k < 3000; ++k) leaning.update(kDt, {0.1, -0.09}, true);
+  ASSERT_GT(leaning.angle().cwiseAbs().minCoeff(), 0.1);
+  TaskReference with(space), without(space);
+  with.reset(start, 0.0);
+  without.reset(start, 0.0);
+  PatternSample s = walking_sample();
+  s.arm_swing = 0.0;
+  with.update(s, flat, leaning, start);
+  without.update(s, flat, upright, start);
+  EXPECT_LT((with.x().segment<3>(L.upper_body_orientation) - leaning.rotation_vector()).norm(), 1e-15);
+  const Eigen::Matrix3d lean = math::so3::exp(leaning.rotation_vector());
+  for (int k = 0; k < 2; ++k) {
+    const Eigen::Matrix3d foot_with = lean * math::so3::exp(with.x().segment<3>(L.foot_orientation[k]));
+    const Eigen::Matrix3d foot_without = math::so3::exp(without.x().segment<3>(L.foot_orientation[k]));
+    EXPECT_LT((foot_with - foot_without).norm(), 1e-12) << k;
+  }
+  if (L.arm_com_rows == 3) {
+    for (int k = 0; k < 2; ++k) {
+      const Eigen::Vector3d from_body = start.com - start.upper_body_position;
+      const Eigen::Vector3d arm_with = with.x().segment<3>(L.arm_com[k]) + from_body;
+      const Eigen::Vector3d arm_without = without.x().segment<3>(L.arm_com[k]) + from_body;
+      // The lean is about the heading frame's axes.
+      const Eigen::Matrix3d heading = Eigen::AngleAxisd(s.heading, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+      EXPECT_LT((arm_with - heading * lean * heading.transpose() * arm_without).norm(), 1e-12) << k;
     }
   }
 }
@@ -190,7 +227,7 @@ TEST_P(TaskReferenceTest, RatesAreTheTimeDerivativesOfTheReference) {
     moved.arm_swing += h * s.arm_swing_rate;
     TaskReference ref(space);
     ref.reset(start, 0.0);
-    ref.update(moved, flat, start);
+    ref.update(moved, flat, upright, start);
     return std::pair<Eigen::VectorXd, Eigen::VectorXd>(ref.x(), ref.rate());
   };
   const double h = 1e-6;

@@ -151,6 +151,12 @@ TEST(RobotConfig, SingleAndCrossKeyChecksKeepTheirMessages) {
             "test.yaml:1: key 'controller.limits.lateral_vx_share': must be at most 1 (a share)");
   EXPECT_EQ(config_error("controller", "{limits: {min_zmp_margin: -0.01}}"),
             "test.yaml:1: key 'controller.limits.min_zmp_margin': must not be negative (got -0.01)");
+  EXPECT_EQ(config_error("controller", "{upper_body_lean: {max_angle: -0.1}}"),
+            "test.yaml:1: key 'controller.upper_body_lean.max_angle': must not be negative (got -0.1)");
+  EXPECT_EQ(config_error("controller", "{upper_body_lean: {return_frequency: 0}}"),
+            "test.yaml:1: key 'controller.upper_body_lean.return_frequency': must be positive (got 0)");
+  EXPECT_NE(config_error("controller", "{upper_body_lean: {enabled: maybe}}").find("controller.upper_body_lean.enabled"),
+            std::string::npos);
   EXPECT_EQ(config_error("controller", "{sensor_limits: {frozen_cycles: 2.5}}"),
             "test.yaml:1: key 'controller.sensor_limits.frozen_cycles': expected an integer");
   EXPECT_NE(config_error("controller", "{limits: {vz_max: 1}}").find("test.yaml:1: key 'controller.limits.vz_max': unknown key"),
