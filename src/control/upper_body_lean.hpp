@@ -15,6 +15,8 @@
 namespace biped {
 
 struct UpperBodyLeanParams {
+  // On against off (docs/stabilizer.md, "Upper-body lean"): early sideways pushes at 0.3 m/s caught
+  // 9 of 12 times against 1; LOLA's held-out user campaign unchanged (95.2 % against 95.0 %).
   bool enabled = true;
   // [rad/m] lean per metre of DCM error (measured − planned, heading frame) beyond the dead band.
   double gain = 4.0;
