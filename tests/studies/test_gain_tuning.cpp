@@ -75,12 +75,14 @@ TEST(GainTuning, SearchRangesApplyToTheRobotAndHoldTheStart) {
     EXPECT_DOUBLE_EQ(p.value(2.0), p.value(1.0));
   }
   EXPECT_GE(all.size(), 6u);
-  EXPECT_LE(all.size(), 14u);
-  // Switched off, the step adaptation's parameters are not tuned.
-  const std::vector<SearchRange> without_steps =
-      search_ranges(tuned_parameters(), lola("{step_adaptation: {enabled: false}}"), reference);
-  EXPECT_LT(without_steps.size(), all.size());
-  for (const SearchRange& p : without_steps) EXPECT_EQ(std::string(p.row.key).find("step_adaptation"), std::string::npos);
+  EXPECT_LE(all.size(), 16u);
+  // Switched off, the step adaptation's and the hip strategy's parameters are not tuned.
+  for (const char* extension : {"step_adaptation", "upper_body_lean"}) {
+    const std::vector<SearchRange> without =
+        search_ranges(tuned_parameters(), lola("{" + std::string(extension) + ": {enabled: false}}"), reference);
+    EXPECT_LT(without.size(), all.size()) << extension;
+    for (const SearchRange& p : without) EXPECT_EQ(std::string(p.row.key).find(extension), std::string::npos);
+  }
 
   const RunConfig detuned = lola("{stabilization: {tilt_gain: 12}}");
   const std::vector<SearchRange> widened = search_ranges(rows({"controller.stabilization.tilt_gain"}), reference, detuned);
