@@ -17,6 +17,8 @@
 #include "kinematic_loop.hpp"
 #include "studies/scenario_runner.hpp"
 #include "model/multibody_zmp.hpp"
+#include "sim/closed_loop.hpp"
+#include "sim/simulation.hpp"
 #include "test_support.hpp"
 
 namespace biped {
@@ -292,6 +294,66 @@ TEST_P(WalkingControllerTest, ACycleAllocatesNothing) {
   }
   EXPECT_EQ(allocations, 0);
   EXPECT_GT(loop.controller.status().steps_completed, 2);
+}
+
+// The same in the closed loop, where the kinematic loop's open-loop cycle leaves out what feedback
+// runs: state estimation, eq. (10), force control, terrain and step adaptation, the hip strategy
+// and the fault handling. Every step() is counted.
+struct AllocationCount {
+  long allocations = 0, cycles = 0;
+  double largest_lean = 0.0, largest_shift = 0.0;
+  std::string last_state;
+};
+
+AllocationCount count_allocations(const char* scenario_file, const std::vector<std::string>& sets) {
+  const Scenario scenario = load_scenario(test::source_path(scenario_file), sets);
+  const RunConfig config = make_run_config(scenario);
+  const RobotModel model = RobotModel::load(config.controller.model_path, config.controller.software_limit_margin_rad);
+  Simulation sim(config.sim, model);
+  struct Counting final : Controller {
+    WalkingController walking;
+    AllocationCount count;
+    Counting(const RobotModel& m, const WalkingControllerParams& p) : walking(m, p) {}
+    void reset(const SensorData& first) override { walking.reset(first); }
+    void step(const SensorData& sensors, const WalkCommand& command, JointCommand& out) override {
+      const long before = heap_allocations();
+      walking.step(sensors, command, out);
+      count.allocations += heap_allocations() - before;
+      ++count.cycles;
+      count.largest_lean = std::max(count.largest_lean, walking.status().upper_body_lean.norm());
+      count.largest_shift = std::max(count.largest_shift, walking.status().landing_shift.norm());
+    }
+    const ControllerStatus& status() const override { return walking.status(); }
+  } controller(model, config.controller.walking);
+  RunOptions options;
+  options.duration = scenario.duration;
+  run_closed_loop(sim, controller, scenario.commands, options, nullptr);
+  controller.count.last_state = controller.walking.status().state;
+  return controller.count;
+}
+
+// LOLA at 0.3 m/s with the robot file's sensor errors, pushed sideways early in a single support
+// (9 N·s): the lean leaves upright and the landing point moves.
+TEST(WalkingControllerClosedLoop, ACycleWithFeedbackAllocatesNothing) {
+  const AllocationCount c = count_allocations(
+      "config/scenarios/lola-push.yaml",
+      {"commands.1.vx=0.3", "duration=7",
+       "disturbances=[{type: push, at: {touchdown: 3, phase: 0.125}, direction_deg: -90, impulse_Ns: 9, duration: 0.1}]"});
+  EXPECT_EQ(c.allocations, 0);
+  EXPECT_GT(c.cycles, 6000);
+  EXPECT_GT(c.largest_lean, 0.05) << "the lean left upright";
+  EXPECT_GT(c.largest_shift, 0.01) << "the step adaptation moved a landing point";
+}
+
+// A NaN from the left F/T sensor at 5 s while walking at 0.4 m/s, then the encoder of the left knee
+// frozen: the degraded mode, then the safe stop.
+TEST(WalkingControllerClosedLoop, ACycleAfterSensorFaultsAllocatesNothing) {
+  const AllocationCount c = count_allocations(
+      "config/scenarios/lola-ft-nan.yaml",
+      {"duration=8", "sensors.faults=[{t: 5.0, sensor: ft_left, value: nan}, {t: 6.0, sensor: left_knee, value: freeze, duration: 2.0}]"});
+  EXPECT_EQ(c.allocations, 0);
+  EXPECT_GT(c.cycles, 7000);
+  EXPECT_NE(c.last_state, "walking") << "the faults were handled";
 }
 
 // The arms swing against the legs (the right arm forward when the left foot is ahead), as rigid
