@@ -1,5 +1,6 @@
 #include "control/attitude_estimator.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "math/rotations.hpp"
@@ -22,6 +23,7 @@ void AttitudeEstimator::reset() {
   have_position_ = {false, false};
   stance_ = -1;
   gap_ = 0.0;
+  restarting_ = 0.0;
 }
 
 int AttitudeEstimator::choose_stance(const SensorData& s, const std::array<bool, 2>& ft_healthy) const {
@@ -83,11 +85,17 @@ const SensorData& AttitudeEstimator::apply(const SensorData& s, bool imu_healthy
   Eigen::Vector3d velocity_rate = s.imu_acceleration + gravity - rate.cross(velocity_);
   if (stance >= 0 && have_position_[stance] && dt > 0.0) {
     const Eigen::Vector3d kinematic = (position[stance] - last_position_[stance]) / dt + rate.cross(position[stance]);
-    if (gap_ > params_.max_gap) velocity_ = kinematic;
+    if (gap_ > params_.max_gap) restarting_ = params_.restart_time;
     const Eigen::Vector3d error = kinematic - velocity_;
-    const double wn = params_.bandwidth;
-    velocity_rate += 2.0 * params_.damping * wn * error;
-    correction = -(wn * wn / gravity.squaredNorm()) * gravity.cross(error);
+    if (restarting_ > 0.0) {
+      // (A restart time of a few cycles or less takes the kinematics' velocity as it is.)
+      velocity_rate += std::min(3.0 / params_.restart_time, 1.0 / dt) * error;
+      restarting_ -= dt;
+    } else {
+      const double wn = params_.bandwidth;
+      velocity_rate += 2.0 * params_.damping * wn * error;
+      correction = -(wn * wn / gravity.squaredNorm()) * gravity.cross(error);
+    }
     gap_ = 0.0;
   } else {
     gap_ += dt;

@@ -44,6 +44,11 @@ struct AttitudeEstimatorParams {
   double cop_margin = 0.02;  // [m]
   // [s] without a stance foot this long, the velocity restarts from the kinematics' (no stale state).
   double max_gap = 0.3;
+  // [s] the restart: for this long the velocity follows the kinematics' (time constant a third of
+  // it) and the tilt is not corrected. One cycle's kinematic velocity is a difference of noisy,
+  // quantized encoder readings, and a foot that has just stopped rocking on its edge still moves:
+  // taken as it is, it turned into degrees of tilt error after a sideways push (docs/stabilizer.md).
+  double restart_time = 0.05;
 };
 
 class AttitudeEstimator {
@@ -82,6 +87,7 @@ class AttitudeEstimator {
   std::array<bool, 2> have_position_{false, false};
   int stance_ = -1;
   double gap_ = 0.0;  // [s] since the last cycle with a stance foot
+  double restarting_ = 0.0;  // [s] left of the velocity's restart
 };
 
 }  // namespace biped

@@ -231,6 +231,8 @@ const ParameterTable<AttitudeEstimatorParams> kAttitudeEstimatorParameters = {
      "a stance foot for the kinematics has its centre of pressure this far inside its sole"},
     {"max_gap", &AttitudeEstimatorParams::max_gap, "s", kPositive,
      "without a stance foot this long, the velocity restarts from the kinematics'"},
+    {"restart_time", &AttitudeEstimatorParams::restart_time, "s", kPositive,
+     "the restart: this long the velocity follows the kinematics' and the tilt is not corrected"},
 };
 
 const ParameterTable<SensorLimits> kSensorLimitParameters = {
