@@ -53,6 +53,7 @@ double percentile(std::vector<double> v, double p) {
 }  // namespace
 
 RunRecorder::RunRecorder(const Simulation& sim, std::ostream* csv) : csv_(csv) {
+  for (const JointInfo& joint : sim.plant().joints()) joint_names_.push_back(joint.name);
   if (!csv_) return;
   std::ostream& o = *csv_;
   o << "t,state,fault,base_x,base_y,base_z,phi_x_deg,phi_y_deg,com_x,com_y,com_z";
@@ -200,6 +201,17 @@ nlohmann::json RunRecorder::summary(const std::string& robot, const std::string&
   for (int k = 0; k < final_status.recovered.count; ++k) {
     const Fault& f = final_status.recovered.items[k];
     j["sensors_recovered"].push_back({{"sensor", describe(f)}, {"t", f.time}});
+  }
+  // Every fault the controller found, in order: a second fault, or the one that came after a
+  // recovered sensor, is what the first alone does not tell.
+  j["sensor_faults"] = nlohmann::json::array();
+  for (int k = 0; k < final_status.faults.count; ++k) {
+    const Fault& f = final_status.faults.items[k];
+    nlohmann::json item = {{"sensor", describe(f)}, {"t", f.time}, {"after_fall", result.fell && f.time >= result.fall_time}};
+    if (f.signal == FaultSignal::JointEncoder && f.index >= 0 && f.index < static_cast<int>(joint_names_.size())) {
+      item["joint"] = joint_names_[f.index];
+    }
+    j["sensor_faults"].push_back(item);
   }
   j["command_saturated"] = command_saturated_;
   // What the controller's sensor calibration estimated (all zero with it off).

@@ -73,9 +73,11 @@ struct RecordedRun {
 
   // Ideal sensors: the touchdowns are compared with the plan's steps (with the realistic sensor
   // errors the feet also bounce at touchdown and lift-off, README "Status").
-  RecordedRun(const char* file, double duration)
+  RecordedRun(const char* file, double duration, const std::string& extra = "")
       : scenario(load_scenario(test::source_path(std::string("config/scenarios/") + file),
-                               {"duration=" + std::to_string(duration), "sensors.ideal=true"})),
+                               extra.empty() ? std::vector<std::string>{"duration=" + std::to_string(duration), "sensors.ideal=true"}
+                                             : std::vector<std::string>{"duration=" + std::to_string(duration),
+                                                                        "sensors.ideal=true", extra})),
         config(make_run_config(scenario)),
         model(RobotModel::load(config.controller.model_path, config.controller.software_limit_margin_rad)),
         sim(config.sim, model),
@@ -217,6 +219,8 @@ TEST(RunRecorder, AFallEndsTheStepsAndItsImpactFaultIsNotTheCause) {
   EXPECT_TRUE(s["fault"].is_null()) << s["fault"];
   EXPECT_EQ(s["fault_after_fall"], describe(fall.controller->status().first_fault));
   EXPECT_GE(s["fault_time_s"].get<double>(), fall.result.fall_time);
+  ASSERT_FALSE(s["sensor_faults"].empty());
+  for (const nlohmann::json& f : s["sensor_faults"]) EXPECT_TRUE(f["after_fall"].get<bool>()) << f;
 }
 
 // A fault that comes before any fall stays the run's fault.
@@ -228,6 +232,25 @@ TEST(RunRecorder, AFaultBeforeAnyFallIsTheRunsFault) {
   EXPECT_TRUE(s["fault_after_fall"].is_null());
   EXPECT_LT(s["fault_time_s"].get<double>(), 6.0);
   EXPECT_TRUE(walk().summary(walk().recorder)["fault_time_s"].is_null());
+  EXPECT_TRUE(walk().summary(walk().recorder)["sensor_faults"].empty());
+}
+
+// Every fault is listed in the order found, a joint encoder's with its joint: the F/T NaN at 5 s,
+// then the left knee's encoder frozen from 5.5 s while the safe stop moves the leg.
+TEST(RunRecorder, EveryFaultIsListedWithItsTimeAndJoint) {
+  const RecordedRun two("lola-ft-nan.yaml", 8.0,
+                        "sensors.faults=[{t: 5.0, sensor: ft_left, value: nan}, "
+                        "{t: 5.5, sensor: left_knee, value: freeze, duration: 2.5}]");
+  const nlohmann::json s = two.summary(two.recorder);
+  ASSERT_EQ(s["sensor_faults"].size(), 2u) << s["sensor_faults"];
+  EXPECT_EQ(s["sensor_faults"][0]["sensor"], "left F/T sensor");
+  EXPECT_NEAR(s["sensor_faults"][0]["t"].get<double>(), 5.0, 0.01);
+  EXPECT_EQ(s["sensor_faults"][1]["sensor"], "joint encoder frozen");
+  EXPECT_EQ(s["sensor_faults"][1]["joint"], "left_knee");
+  EXPECT_GT(s["sensor_faults"][1]["t"].get<double>(), 5.5);
+  EXPECT_EQ(s["fault"], "left F/T sensor") << "the first fault stays the run's";
+  ASSERT_FALSE(two.result.fell);
+  for (const nlohmann::json& f : s["sensor_faults"]) EXPECT_FALSE(f["after_fall"].get<bool>()) << f;
 }
 
 }  // namespace
