@@ -5,7 +5,8 @@
 
 namespace biped {
 
-TerrainAdaptation::TerrainAdaptation(const RobotModel& model, const TerrainAdaptationParams& params) : params_(params) {
+TerrainAdaptation::TerrainAdaptation(const RobotModel& model, const TerrainAdaptationParams& params)
+    : params_(params), weight_(model.weight_above_sensors()) {
   for (Side side : kSides) {
     heel_x_[index_of(side)] = model.foot(side).sole_x_min;
     toe_x_[index_of(side)] = model.foot(side).sole_x_max;
@@ -20,18 +21,33 @@ void TerrainAdaptation::reset() {
 }
 
 void TerrainAdaptation::follow_plan(Foot& foot, const Foot& other, const FootReference& plan,
-                                    double ground_above_command, double dt) {
+                                    double ground_above_command, double dt, bool other_trusted) {
   foot.settling = false;
   foot.tilt_rate_sign = 0.0;
   foot.cop_error = 0.0;
   if (plan.in_contact) {
-    if (foot.phase != Phase::Stance) {
-      foot.phase = Phase::Stance;
-      foot.planned_ground = plan.position.z();
-      foot.ground = foot.offset + ground_above_command;
-    }
-    foot.rate = foot.tilt_rate = 0.0;
+    foot.tilt_rate = 0.0;
     foot.slope_rate.setZero();
+    if (foot.phase == Phase::Swing || foot.phase == Phase::Latched) {
+      foot.phase = Phase::Searching;
+      foot.search_time = 0.0;
+      foot.planned_ground = plan.position.z();
+    }
+    if (foot.phase == Phase::Searching) {
+      // Late ground, found by the load the other foot gives up: without it the plan shifts the
+      // weight onto a foot still in the air.
+      const bool loaded = weight_ - other.filtered_force > kUntrustedContactShare * weight_;
+      const double lowest = other.ground - params_.max_step;
+      foot.search_time += dt;
+      if (!other_trusted || loaded || foot.offset <= lowest) {
+        foot.phase = Phase::Stance;
+        foot.ground = foot.offset + ground_above_command;
+      } else if (foot.search_time > params_.search_delay) {
+        set_offset(foot, std::max(foot.offset - params_.search_speed * dt, lowest), dt);
+        return;
+      }
+    }
+    foot.rate = 0.0;
     return;
   }
   foot.phase = Phase::Swing;
@@ -153,7 +169,7 @@ void TerrainAdaptation::step(double dt, const PatternSample& s, const std::array
     foot.filtered_roll_torque += filter * (measured[k].torque.x() - foot.filtered_roll_torque);
     if (plan.in_contact) foot.position = plan.position.head<2>();
     if (!trusted[k]) {
-      follow_plan(foot, other, plan, ground_above_command[k], dt);
+      follow_plan(foot, other, plan, ground_above_command[k], dt, trusted[1 - k]);
       continue;
     }
     const bool contact = foot.filtered_force > params_.contact_force;

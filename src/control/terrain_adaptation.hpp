@@ -66,10 +66,11 @@ class TerrainAdaptation {
   // One cycle with the pattern's sample, the measured and the desired contact wrenches (λ_d of
   // eq. 10, last cycle), and where each standing foot's ground lies above its planned height plus
   // offset: force control's height modification (Δz of eq. 20) and the sole's deflection under
-  // its load. A foot whose F/T reading is not `trusted` (a failed sensor) finds nothing: its phase
-  // follows the plan, standing it keeps its offset, in the air it goes to the other foot's ground
-  // height; so its state is consistent when the sensor is trusted again. Without any trusted
-  // reading the CoM height holds too. `turn_above_command`: force control's turn of each foot
+  // its load. A foot whose F/T reading is not `trusted` (a failed sensor) finds no ground of its
+  // own: its phase follows the plan, standing it keeps its offset, in the air it goes to the other
+  // foot's ground height; so its state is consistent when the sensor is trusted again. Only late
+  // ground is still found while the other foot's reading is trusted: its load is the weight the
+  // other foot no longer carries. Without any trusted reading the CoM height holds too. `turn_above_command`: force control's turn of each foot
   // (φ_x, φ_y of eq. 20's Δx_λ) [rad].
   void step(double dt, const PatternSample& s, const std::array<Wrench, 2>& measured,
             const std::array<Wrench, 2>& desired = {}, const std::array<double, 2>& ground_above_command = {0.0, 0.0},
@@ -131,14 +132,20 @@ class TerrainAdaptation {
   // A centre of pressure this far inside the sole's edges means the sole lies flat [m].
   static constexpr double kFlatSoleMargin = 0.02;
   static constexpr double kSlopeAgreement = 0.5;  // share of the slope's height the footholds' heights may lag
-  // A foot without a trusted F/T reading: see step().
-  void follow_plan(Foot& foot, const Foot& other, const FootReference& plan, double ground_above_command, double dt);
+  // A foot without a trusted F/T reading: see step(). `other_trusted`: the other foot's is.
+  void follow_plan(Foot& foot, const Foot& other, const FootReference& plan, double ground_above_command, double dt,
+                   bool other_trusted);
+  // Share of the weight above the F/T sensors the other foot no longer carries that means a foot
+  // without a trusted reading has met the ground: above the estimate's errors (the upper body's
+  // mass known to some 5 %, the CoM's vertical acceleration in the double support).
+  static constexpr double kUntrustedContactShare = 0.2;
   static constexpr double kSwingSpeed = 0.5;  // [m/s] a swinging foot's offset moves to its target at most this fast
 
   static constexpr double kBandToStop = 0.5;  // share of cop_band inside which a started turn stops
   static constexpr double kTiltReturnTime = 0.05;  // [s] time constant of the tilt's return in the swing
 
   TerrainAdaptationParams params_;
+  double weight_ = 0.0;  // [N] above the F/T sensors
   std::array<double, 2> heel_x_{}, toe_x_{};  // sole edges per foot (sensor frame) [m]
   std::array<double, 2> right_y_{}, left_y_{};  // the soles' right and left edges (sensor frame) [m]
   std::array<Foot, 2> feet_;

@@ -228,31 +228,52 @@ TEST(TerrainAdaptation, AStartedTurnGoesOnToHalfTheBand) {
   EXPECT_DOUBLE_EQ(turn_for(40), 0.0) << "stopped";
 }
 
-// A foot whose F/T sensor has failed (not trusted) finds nothing from its reading: at a planned
-// touchdown without load it does not search down, it stands where planned; in the air it goes to
-// the other foot's ground; when trusted again in the air, it lands like any foot. The other foot
-// goes on finding its ground.
-TEST(TerrainAdaptation, AFootWithoutATrustedReadingFollowsThePlan) {
+// A foot whose F/T sensor has failed (not trusted) finds no ground of its own: in the air it goes
+// to the other foot's ground. At a planned touchdown it searches down only while the other foot,
+// trusted, still carries the whole weight (the failed foot's load is what the other gives up), and
+// stands where it is once the other foot has given up some of it, or when neither reading is
+// trusted. Trusted again, in the air, it lands like any foot. The other foot goes on finding its
+// ground.
+TEST(TerrainAdaptation, AFootWithoutATrustedReadingFindsLateGroundByTheOtherFootsLoad) {
   TerrainAdaptationParams params;
-  TerrainAdaptation terrain(test::load_model("lola"), params);
-  const std::array<bool, 2> left_failed{false, true};
+  const RobotModel model = test::load_model("lola");
+  const double weight = model.weight_above_sensors();
+  TerrainAdaptation terrain(model, params);
+  const std::array<bool, 2> left_failed{false, true}, both_failed{false, false};
   const std::array<double, 2> standing{0.0, 0.0};
   PatternSample s;
   s.feet[0].in_contact = false;
   // The right foot stands 1.5 cm above the plan's ground (found from its trusted reading).
-  for (int i = 0; i < 100; ++i) terrain.step(kDt, s, loads(-10.0, 500.0), {}, {0.0, 0.015}, left_failed);
+  for (int i = 0; i < 100; ++i) terrain.step(kDt, s, loads(-10.0, weight), {}, {0.0, 0.015}, left_failed);
   EXPECT_NEAR(terrain.ground_height(1), 0.015, 1e-12);
   EXPECT_NEAR(terrain.foot_offset(0), 0.015, 1e-9) << "in the air: to the other foot's ground";
+  // Touchdown planned, the right foot still carrying all the weight: the left one is in the air.
   s.feet[0].in_contact = true;
-  for (int i = 0; i < 500; ++i) terrain.step(kDt, s, loads(-10.0, 500.0), {}, standing, left_failed);
-  EXPECT_NEAR(terrain.foot_offset(0), 0.015, 1e-9) << "no search from a reading that is not trusted";
-  EXPECT_NEAR(terrain.ground_height(0), 0.015, 1e-9);
+  for (int i = 0; i < 100; ++i) terrain.step(kDt, s, loads(-10.0, weight), {}, standing, left_failed);
+  const double searched = terrain.foot_offset(0);
+  EXPECT_LT(searched, 0.015 - 0.01) << "searching down";
+  EXPECT_NEAR(terrain.foot_offset_rate(0), -params.search_speed, 1e-9);
+  // The right foot gives up half the weight: the left one carries it, the search stops there.
+  for (int i = 0; i < 100; ++i) terrain.step(kDt, s, loads(-10.0, 0.5 * weight), {}, standing, left_failed);
+  EXPECT_LT(terrain.foot_offset(0), searched);
+  EXPECT_GT(terrain.foot_offset(0), searched - 0.01) << "stopped within the force filter's few cycles";
+  EXPECT_DOUBLE_EQ(terrain.foot_offset_rate(0), 0.0);
+  EXPECT_NEAR(terrain.ground_height(0), terrain.foot_offset(0), 1e-12);
+
+  // Neither reading trusted: no search, the foot stands where planned.
+  TerrainAdaptation blind(model, params);
+  s.feet[0].in_contact = false;
+  for (int i = 0; i < 100; ++i) blind.step(kDt, s, loads(-10.0, weight), {}, {0.0, 0.015}, left_failed);
+  s.feet[0].in_contact = true;
+  for (int i = 0; i < 500; ++i) blind.step(kDt, s, loads(-10.0, weight), {}, standing, both_failed);
+  EXPECT_NEAR(blind.foot_offset(0), 0.015, 1e-9) << "no search without any trusted reading";
+
   // Trusted again, in the air over ground 1 cm lower than it thinks: a late contact searches.
   s.feet[0].in_contact = false;
-  for (int i = 0; i < 50; ++i) terrain.step(kDt, s, loads(-10.0, 500.0), {}, {0.0, 0.015});
+  for (int i = 0; i < 50; ++i) blind.step(kDt, s, loads(-10.0, weight), {}, {0.0, 0.015});
   s.feet[0].in_contact = true;
-  for (int i = 0; i < 200; ++i) terrain.step(kDt, s, loads(-10.0, 500.0), {}, standing);
-  EXPECT_LT(terrain.foot_offset(0), 0.015 - 0.01) << "searching again";
+  for (int i = 0; i < 200; ++i) blind.step(kDt, s, loads(-10.0, weight), {}, standing);
+  EXPECT_LT(blind.foot_offset(0), 0.015 - 0.01) << "searching again";
 }
 
 // Slopes: the right foot stands with its sole flat (centre of pressure inside it) where force
