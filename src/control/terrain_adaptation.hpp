@@ -70,8 +70,8 @@ class TerrainAdaptation {
   // own: its phase follows the plan, standing it keeps its offset, in the air it goes to the other
   // foot's ground height; so its state is consistent when the sensor is trusted again. Only late
   // ground is still found while the other foot's reading is trusted: its load is the weight the
-  // other foot no longer carries. Without any trusted reading the CoM height holds too. `turn_above_command`: force control's turn of each foot
-  // (φ_x, φ_y of eq. 20's Δx_λ) [rad].
+  // other foot no longer carries. Without any trusted reading the CoM height holds too.
+  // `turn_above_command`: force control's turn of each foot (φ_x, φ_y of eq. 20's Δx_λ) [rad].
   void step(double dt, const PatternSample& s, const std::array<Wrench, 2>& measured,
             const std::array<Wrench, 2>& desired = {}, const std::array<double, 2>& ground_above_command = {0.0, 0.0},
             const std::array<bool, 2>& trusted = {true, true},

@@ -53,7 +53,9 @@ double percentile(std::vector<double> v, double p) {
 }  // namespace
 
 RunRecorder::RunRecorder(const Simulation& sim, std::ostream* csv) : csv_(csv) {
-  for (const JointInfo& joint : sim.plant().joints()) joint_names_.push_back(joint.name);
+  for (int i = 0; i < sim.num_controller_joints(); ++i) {
+    joint_names_.push_back(sim.plant().joints()[sim.plant_joint_of(i)].name);
+  }
   if (!csv_) return;
   std::ostream& o = *csv_;
   o << "t,state,fault,base_x,base_y,base_z,phi_x_deg,phi_y_deg,com_x,com_y,com_z";

@@ -35,7 +35,7 @@ class RunRecorder final : public RunObserver {
 
  private:
   std::ostream* csv_;
-  std::vector<std::string> joint_names_;  // the simulated robot's, in the controller's joint order
+  std::vector<std::string> joint_names_;  // by the controller's joint index (Fault::index)
   std::vector<Sample> samples_;
   double start_x_ = 0.0, start_y_ = 0.0, start_yaw_ = 0.0;
   double final_pos_[3] = {0.0, 0.0, 0.0};

@@ -64,6 +64,8 @@ class Simulation {
   double time() const { return data_->time; }
   int physics_steps_per_control_period() const { return steps_per_period_; }
   int num_controller_joints() const { return static_cast<int>(plant_joint_of_.size()); }
+  // The simulated robot's joint (plant().joints() index) that is the controller's joint `i`.
+  int plant_joint_of(int i) const { return plant_joint_of_[i]; }
   const RobotModel& plant() const { return plant_; }
   const mjData* data() const { return data_.get(); }
   const JointDrives& drives() const { return drives_; }
