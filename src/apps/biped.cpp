@@ -91,8 +91,10 @@ int tables_command(const std::string& robot, const std::string& out_option) {
   const std::filesystem::path out_dir = std::filesystem::path(out).parent_path();
   biped::prepare_output_directory(out_dir.empty() ? "." : out_dir.string());
   biped::AtomicOutputFile file(out);
-  const biped::StepTable table =
-      biped::generate_step_table(model, config.controller.walking, biped::StepTableSearch{}, &config.sim, &std::cout);
+  biped::StepTableSearch search;
+  search.relaxed_zmp_window = config.controller.step_table_relaxed_zmp_window;
+  search.prefer_short_steps = config.controller.step_table_prefer_short_steps;
+  const biped::StepTable table = biped::generate_step_table(model, config.controller.walking, search, &config.sim, &std::cout);
   biped::write_step_table(table, file.stream());
   file.commit();
   std::printf("step table: %s\n", out.c_str());

@@ -94,6 +94,10 @@ const ParameterTable<ControllerConfig> kControllerParameters = {
      "walking controller: stabilizing control on, or off (the open-loop baseline)"},
     {"software_limit_margin_deg", Degrees<ControllerConfig>{&ControllerConfig::software_limit_margin_rad}, "deg",
      kNonNegative, "software joint limits = hard limits minus this"},
+    {"step_table_relaxed_zmp_window", &ControllerConfig::step_table_relaxed_zmp_window, "s", kNonNegative,
+     "biped tables: speeds above the fastest row that passed by each instant's multibody ZMP are searched again with it averaged over this window (0: never)"},
+    {"step_table_prefer_short_steps", &ControllerConfig::step_table_prefer_short_steps, "", {},
+     "biped tables: among gaits within 5 mm of the largest ZMP margin, the shortest steps (else the longest)"},
 };
 const ParameterTable<StepParameters> kStepParameters = {
     {"step_time", &StepParameters::step_time, "s", kPositive,

@@ -17,6 +17,11 @@ struct ControllerConfig {
   std::string model_path;  // the controller's own MJCF (default: the simulated robot's)
   bool stabilizer = true;  // used by the walking controller; the standing controller has none
   double software_limit_margin_rad = kSoftwareLimitMarginRad;
+  // [s] `biped tables`: where no gait passes at a speed by each instant's multibody ZMP, search it
+  // again with the ZMP averaged over this window; 0: never (StepTableSearch::relaxed_zmp_window).
+  double step_table_relaxed_zmp_window = 0.0;
+  // `biped tables`: among gaits with nearly the largest margin, the shortest steps, not the longest.
+  bool step_table_prefer_short_steps = false;
   StandingControllerParams standing;
   WalkingControllerParams walking;
   WeightShiftParams weight_shift;

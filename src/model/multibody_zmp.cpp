@@ -5,7 +5,7 @@
 namespace biped {
 
 Eigen::Vector2d multibody_zmp(const RobotModel& model, RobotData& data, const Eigen::VectorXd& q0,
-                              const Eigen::VectorXd& q1, const Eigen::VectorXd& q2, double dt) {
+                              const Eigen::VectorXd& q1, const Eigen::VectorXd& q2, double dt, double* normal_force) {
   const mjModel* m = model.mj();
   mjData* d = data.mj();
   // qvel and qacc as the mean and difference of the two one-sided velocities (mj_differentiatePos
@@ -25,6 +25,7 @@ Eigen::Vector2d multibody_zmp(const RobotModel& model, RobotData& data, const Ei
   const Eigen::Vector3d force(d->qfrc_inverse);
   const Eigen::Vector3d torque = math::mat_from_mujoco(d->xmat + 9 * root) * Eigen::Vector3d(d->qfrc_inverse + 3);
   const Eigen::Vector3d origin(d->xpos + 3 * root);
+  if (normal_force) *normal_force = force.z();
   return {origin.x() - (torque.y() + origin.z() * force.x()) / force.z(),
           origin.y() + (torque.x() - origin.z() * force.y()) / force.z()};
 }

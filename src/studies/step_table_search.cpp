@@ -5,6 +5,7 @@
 #include <deque>
 #include <limits>
 #include <ostream>
+#include <string>
 
 #include "model/multibody_zmp.hpp"
 #include "sim/closed_loop.hpp"
@@ -59,7 +60,8 @@ const T* first_where(const std::vector<const T*>& items, int jobs, const Pred& p
 }  // namespace
 
 CandidateResult evaluate_step_candidate(const RobotModel& model, const WalkingControllerParams& base, double speed,
-                                        double step_time, double double_support_ratio, int steps, int settle_steps) {
+                                        double step_time, double double_support_ratio, int steps, int settle_steps,
+                                        double zmp_window) {
   WalkingControllerParams params = base;
   params.stabilizer = false;
   params.sensor_limits.frozen_cycles = 0;  // the kinematic replay below feeds constant F/T and IMU readings
@@ -81,6 +83,18 @@ CandidateResult evaluate_step_candidate(const RobotModel& model, const WalkingCo
   const double gait_start = start + params.plan.start_shift + settle_steps * step_time;
   const int com_row = TaskSpace(model).layout().com;
   std::deque<Eigen::VectorXd> history;
+  // Criterion 2's ZMP is the mean over the last `window` cycles, weighted by the normal force (the
+  // mean moment over the mean force). Each instant's ZMP lies in that instant's support, so the mean
+  // lies in the hull of the window's supports: it is judged against the best of them (a lower bound).
+  struct ZmpSample {
+    Eigen::Vector2d weighted_zmp;
+    double normal_force;
+    PatternSample pattern;
+  };
+  const std::size_t window = static_cast<std::size_t>(std::max(1L, std::lround(zmp_window / dt)));
+  std::deque<ZmpSample> recent;
+  Eigen::Vector2d weighted_zmp_sum = Eigen::Vector2d::Zero();
+  double normal_force_sum = 0.0;
   CandidateResult result;
   result.feasible = true;
   result.zmp_margin = std::numeric_limits<double>::infinity();
@@ -97,9 +111,23 @@ CandidateResult evaluate_step_candidate(const RobotModel& model, const WalkingCo
     }
     history.push_back(rmrc.qpos_d());
     if (history.size() > 3) history.pop_front();
-    if (history.size() == 3 && i % 10 == 0 && sensors.time >= gait_start) {
-      const Eigen::Vector2d zmp = multibody_zmp(model, data, history[0], history[1], history[2], dt);
-      result.zmp_margin = std::min(result.zmp_margin, support_margin(model, controller.pattern(), zmp));
+    if (history.size() < 3) continue;
+    double normal_force = 0.0;
+    const Eigen::Vector2d zmp = multibody_zmp(model, data, history[0], history[1], history[2], dt, &normal_force);
+    recent.push_back({normal_force * zmp, normal_force, controller.pattern()});
+    weighted_zmp_sum += recent.back().weighted_zmp;
+    normal_force_sum += normal_force;
+    if (recent.size() > window) {
+      weighted_zmp_sum -= recent.front().weighted_zmp;
+      normal_force_sum -= recent.front().normal_force;
+      recent.pop_front();
+    }
+    const double centre_time = sensors.time - 0.5 * static_cast<double>(recent.size() - 1) * dt;
+    if (recent.size() == window && i % 10 == 0 && centre_time >= gait_start) {
+      const Eigen::Vector2d mean_zmp = weighted_zmp_sum / normal_force_sum;
+      double margin = -std::numeric_limits<double>::infinity();
+      for (const ZmpSample& r : recent) margin = std::max(margin, support_margin(model, r.pattern, mean_zmp));
+      result.zmp_margin = std::min(result.zmp_margin, margin);
     }
   }
   return result;
@@ -126,101 +154,133 @@ bool survives_in_simulation(const RobotModel& model, const WalkingControllerPara
   return !run_closed_loop(sim, controller, {TimedCommand{}, start}, options, nullptr).fell;
 }
 
+namespace {
+
+// Chooses the gait of one speed by criteria 1–3, judging the ZMP averaged over `zmp_window`, among
+// the step times within `max_step_time_change` of `neighbour_step_time` (all of them if none there
+// is feasible, or if it is NaN). Fills `row`; false if no candidate passed (the row then holds the
+// best candidate with a margin ≤ 0).
+bool choose_row(const RobotModel& model, const WalkingControllerParams& base, const StepTableSearch& search,
+                const SimulationParams* sim, double neighbour_step_time, double zmp_window, StepTableRow& row) {
+  struct Candidate {
+    double step_time, ds;
+    CandidateResult result;
+  };
+  const double speed = row.speed;
+  const bool windowed = !std::isnan(neighbour_step_time);
+  auto evaluate = [&](bool in_window) {
+    std::vector<Candidate> list;
+    for (double step_time : search.step_times) {
+      if (in_window && std::abs(step_time - neighbour_step_time) > search.max_step_time_change + 1e-9) continue;
+      for (double ds : search.double_support_ratios) list.push_back({step_time, ds, {}});
+    }
+    const std::vector<CandidateResult> results =
+        parallel_map<CandidateResult>(static_cast<long>(list.size()), search.jobs, [&](long i) {
+          const Candidate& c = list[static_cast<std::size_t>(i)];
+          return evaluate_step_candidate(model, base, speed, c.step_time, c.ds, search.steps, search.settle_steps,
+                                         zmp_window);
+        });
+    for (std::size_t i = 0; i < list.size(); ++i) list[i].result = results[i];
+    return list;
+  };
+  std::vector<Candidate> candidates = evaluate(windowed);
+  if (windowed && std::none_of(candidates.begin(), candidates.end(), [](const Candidate& c) { return c.result.feasible; })) {
+    candidates = evaluate(false);
+  }
+  std::stable_sort(candidates.begin(), candidates.end(), [](const Candidate& a, const Candidate& b) {
+    if (a.result.feasible != b.result.feasible) return a.result.feasible;
+    return a.result.zmp_margin > b.result.zmp_margin;
+  });
+  auto survives = [&](const Candidate& c) {
+    return !sim || survives_in_simulation(model, base, *sim, speed, search.turn_rate, c.step_time, c.ds, search.steps);
+  };
+  auto take = [&](const Candidate& c) {
+    row.step_time = c.step_time;
+    row.double_support_ratio = c.ds;
+    row.zmp_margin = c.result.zmp_margin;
+  };
+  std::vector<const Candidate*> admissible;
+  for (const Candidate& c : candidates) {
+    if (!c.result.feasible || c.result.zmp_margin <= 0.0) break;
+    admissible.push_back(&c);
+  }
+  const Candidate* best = first_where(admissible, search.jobs, survives);
+  if (!best) {
+    take(candidates.front());
+    row.zmp_margin = std::min(0.0, row.zmp_margin);
+    return false;
+  }
+  take(*best);
+  // Longer (or shorter) steps where the margin is (nearly) as large, the longest (shortest) first.
+  const double sign = search.prefer_short_steps ? -1.0 : 1.0;
+  std::vector<const Candidate*> preferred;
+  for (const Candidate& c : candidates) {
+    if (c.result.feasible && sign * (c.step_time - row.step_time) > 1e-9 &&
+        c.result.zmp_margin >= row.zmp_margin - search.margin_tolerance) {
+      preferred.push_back(&c);
+    }
+  }
+  std::stable_sort(preferred.begin(), preferred.end(),
+                   [sign](const Candidate* a, const Candidate* b) { return sign * a->step_time > sign * b->step_time; });
+  if (const Candidate* c = first_where(preferred, search.jobs, survives)) take(*c);
+  return true;
+}
+
+void report_row(std::ostream* progress, const StepTableRow& row, bool feasible, double averaged_over) {
+  if (!progress) return;
+  *progress << "speed " << row.speed << " m/s: step time " << row.step_time << " s, double support "
+            << row.double_support_ratio << ", ZMP margin " << 1000.0 * row.zmp_margin << " mm"
+            << (averaged_over > 0.0 ? " (ZMP averaged over " + std::to_string(averaged_over) + " s)" : "")
+            << (feasible ? "" : " (no feasible candidate)") << '\n';
+}
+
+}  // namespace
+
 StepTable generate_step_table(const RobotModel& model, const WalkingControllerParams& base,
                               const StepTableSearch& search, const SimulationParams* sim, std::ostream* progress) {
-  StepTable table;
-  // From the fastest speed down, so each row's step time stays near the faster row's choice.
   std::vector<double> speeds = search.speeds;
-  std::sort(speeds.rbegin(), speeds.rend());
+  std::sort(speeds.begin(), speeds.end());
+  const std::size_t n = speeds.size();
+  std::vector<StepTableRow> rows(n);
+  std::vector<char> feasible(n, 0);
+  // From the fastest speed down, so each row's step time stays near the faster row's choice.
   double faster_step_time = std::numeric_limits<double>::quiet_NaN();  // NaN: no feasible faster row
-  for (double speed : speeds) {
-    StepTableRow best;
-    best.speed = speed;
-    best.clearance = base.plan.step.clearance;
-    if (speed == 0.0) {
+  for (std::size_t k = n; k-- > 0;) {
+    StepTableRow& row = rows[k];
+    row.speed = speeds[k];
+    row.clearance = base.plan.step.clearance;
+    if (row.speed == 0.0) {
       // A zero command means standing (the FSM stops): no gait to choose. The row keeps the nominal
       // parameters, which the stop step uses, and records the standing margin.
-      best.step_time = base.plan.step.step_time;
-      best.double_support_ratio = base.plan.step.double_support_ratio;
-      best.zmp_margin = evaluate_step_candidate(model, base, 0.0, best.step_time, best.double_support_ratio, 1, 0).zmp_margin;
-      table.rows.insert(table.rows.begin(), best);
+      row.step_time = base.plan.step.step_time;
+      row.double_support_ratio = base.plan.step.double_support_ratio;
+      row.zmp_margin = evaluate_step_candidate(model, base, 0.0, row.step_time, row.double_support_ratio, 1, 0,
+                                               search.zmp_window).zmp_margin;
+      feasible[k] = 1;
       continue;
     }
-    // Criteria 1 and 2 for every candidate in the window around the faster row's step time (all of
-    // them if none there is feasible); then criterion 3 by falling margin until one survives.
-    struct Candidate {
-      double step_time, ds;
-      CandidateResult result;
-    };
-    const bool windowed = !std::isnan(faster_step_time);
-    auto evaluate = [&](bool in_window) {
-      std::vector<Candidate> list;
-      for (double step_time : search.step_times) {
-        if (in_window && std::abs(step_time - faster_step_time) > search.max_step_time_change + 1e-9) continue;
-        for (double ds : search.double_support_ratios) list.push_back({step_time, ds, {}});
-      }
-      const std::vector<CandidateResult> results = parallel_map<CandidateResult>(
-          static_cast<long>(list.size()), search.jobs, [&](long i) {
-            const Candidate& c = list[static_cast<std::size_t>(i)];
-            return evaluate_step_candidate(model, base, speed, c.step_time, c.ds, search.steps, search.settle_steps);
-          });
-      for (std::size_t i = 0; i < list.size(); ++i) list[i].result = results[i];
-      return list;
-    };
-    std::vector<Candidate> candidates = evaluate(windowed);
-    if (windowed && std::none_of(candidates.begin(), candidates.end(), [](const Candidate& c) { return c.result.feasible; })) {
-      candidates = evaluate(false);
-    }
-    std::stable_sort(candidates.begin(), candidates.end(), [](const Candidate& a, const Candidate& b) {
-      if (a.result.feasible != b.result.feasible) return a.result.feasible;
-      return a.result.zmp_margin > b.result.zmp_margin;
-    });
-    auto survives = [&](const Candidate& c) {
-      return !sim || survives_in_simulation(model, base, *sim, speed, search.turn_rate, c.step_time, c.ds, search.steps);
-    };
-    bool best_feasible = false;
-    std::vector<const Candidate*> admissible;
-    for (const Candidate& c : candidates) {
-      if (!c.result.feasible || c.result.zmp_margin <= 0.0) break;
-      admissible.push_back(&c);
-    }
-    if (const Candidate* c = first_where(admissible, search.jobs, survives)) {
-      best_feasible = true;
-      best.step_time = c->step_time;
-      best.double_support_ratio = c->ds;
-      best.zmp_margin = c->result.zmp_margin;
-    }
-    // Longer steps where the margin is (nearly) as large: fewer touchdowns, lower joint rates.
-    if (best_feasible) {
-      std::vector<const Candidate*> longer;
-      for (const Candidate& c : candidates) {
-        if (c.result.feasible && c.step_time > best.step_time + 1e-9 &&
-            c.result.zmp_margin >= best.zmp_margin - search.margin_tolerance) {
-          longer.push_back(&c);
-        }
-      }
-      std::stable_sort(longer.begin(), longer.end(),
-                       [](const Candidate* a, const Candidate* b) { return a->step_time > b->step_time; });
-      if (const Candidate* c = first_where(longer, search.jobs, survives)) {
-        best.step_time = c->step_time;
-        best.double_support_ratio = c->ds;
-        best.zmp_margin = c->result.zmp_margin;
-      }
-    }
-    if (!best_feasible) {  // the row records the best candidate and says so with a margin ≤ 0
-      const Candidate& c = candidates.front();
-      best.step_time = c.step_time;
-      best.double_support_ratio = c.ds;
-      best.zmp_margin = std::min(0.0, c.result.zmp_margin);
-    }
-    if (progress) {
-      *progress << "speed " << speed << " m/s: step time " << best.step_time << " s, double support "
-                << best.double_support_ratio << ", ZMP margin " << 1000.0 * best.zmp_margin << " mm"
-                << (best_feasible ? "" : " (no feasible candidate)") << '\n';
-    }
-    table.rows.insert(table.rows.begin(), best);
-    faster_step_time = best_feasible ? best.step_time : std::numeric_limits<double>::quiet_NaN();
+    feasible[k] = choose_row(model, base, search, sim, faster_step_time, search.zmp_window, row);
+    report_row(progress, row, feasible[k], 0.0);
+    faster_step_time = feasible[k] ? row.step_time : std::numeric_limits<double>::quiet_NaN();
   }
+  // The relaxed criterion only adds rows above the ones that passed: from the slowest failed speed
+  // up to the first that fails again, each near the next slower row's step time, so every row that
+  // passed stays as it was.
+  if (search.relaxed_zmp_window > 0.0) {
+    for (std::size_t k = 1; k < n; ++k) {
+      if (feasible[k]) continue;
+      const double slower_step_time = feasible[k - 1] && rows[k - 1].speed > 0.0
+                                          ? rows[k - 1].step_time
+                                          : std::numeric_limits<double>::quiet_NaN();
+      StepTableRow relaxed = rows[k];
+      if (!choose_row(model, base, search, sim, slower_step_time, search.relaxed_zmp_window, relaxed)) break;
+      rows[k] = relaxed;
+      feasible[k] = 1;
+      report_row(progress, relaxed, true, search.relaxed_zmp_window);
+    }
+  }
+  StepTable table;
+  table.rows = rows;
   return table;
 }
 

@@ -2,9 +2,12 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include <yaml-cpp/yaml.h>
 
 #include "io/robot_config.hpp"
+#include "studies/scenario_runner.hpp"
 #include "test_support.hpp"
 
 namespace biped {
@@ -14,10 +17,10 @@ namespace {
 TEST(StepTableSearch, CriterionPrefersFeasibleGaitsWithZmpMargin) {
   const RobotModel model = test::load_model("johnnie");
   WalkingControllerParams base;
-  const CandidateResult easy = evaluate_step_candidate(model, base, 0.3, 0.9, 0.2, 4, 2);
+  const CandidateResult easy = evaluate_step_candidate(model, base, 0.3, 0.9, 0.2, 4, 2, StepTableSearch{}.zmp_window);
   EXPECT_TRUE(easy.feasible);
   EXPECT_GT(easy.zmp_margin, 0.02);
-  const CandidateResult hard = evaluate_step_candidate(model, base, 1.0, 1.0, 0.1, 4, 2);  // 1 m steps
+  const CandidateResult hard = evaluate_step_candidate(model, base, 1.0, 1.0, 0.1, 4, 2, StepTableSearch{}.zmp_window);  // 1 m steps
   EXPECT_FALSE(hard.feasible && hard.zmp_margin > 0.0);
 }
 
@@ -39,6 +42,57 @@ TEST(StepTableSearch, ShippedTablesBoundTheCommands) {
     s.controller["limits"]["vx_max"] = 1.0;
     EXPECT_DOUBLE_EQ(make_run_config(s).controller.walking.plan.limits.vx_max, 1.0) << robot;
   }
+}
+
+// Where no gait passes, criterion 2 may average the ZMP over the drives' period
+// (`step_table_relaxed_zmp_window`): JVRC-1's swing leg, stopping short before touchdown at 0.7 m/s,
+// throws the instantaneous ZMP past the toe for a few milliseconds, which condemns a gait that walks.
+TEST(StepTableSearch, AShortZmpExcursionDoesNotCondemnAGaitThatWalks) {
+  Scenario s;
+  s.file = "test";
+  s.robot = "jvrc1";
+  s.duration = 1.0;
+  const RunConfig config = make_run_config(s);
+  const RobotModel model = load_controller_model(config);
+  const WalkingControllerParams& base = config.controller.walking;
+  const double speed = 0.7, step_time = 0.45, double_support = 0.2, one_cycle = base.rmrc.dt;
+  const CandidateResult instant = evaluate_step_candidate(model, base, speed, step_time, double_support, 6, 2, one_cycle);
+  const CandidateResult averaged = evaluate_step_candidate(model, base, speed, step_time, double_support, 6, 2,
+                                                           1.0 / config.sim.drives.bandwidth_hz);
+  ASSERT_TRUE(instant.feasible && averaged.feasible);
+  EXPECT_LT(instant.zmp_margin, 0.0);
+  EXPECT_GT(averaged.zmp_margin, 0.0);
+  EXPECT_GT(averaged.zmp_margin, instant.zmp_margin + 0.01);
+  EXPECT_TRUE(survives_in_simulation(model, base, config.sim, speed, StepTableSearch{}.turn_rate, step_time,
+                                     double_support, 8));
+}
+
+// The relaxed criterion only adds rows above the fastest row that passed; the rows that passed stay
+// exactly as the strict search chose them.
+TEST(StepTableSearch, TheRelaxedCriterionOnlyAddsFasterRows) {
+  Scenario s;
+  s.file = "test";
+  s.robot = "jvrc1";
+  s.duration = 1.0;
+  const RunConfig config = make_run_config(s);
+  const RobotModel model = load_controller_model(config);
+  StepTableSearch search;
+  search.speeds = {0.6, 0.7};
+  search.step_times = {0.45, 0.5};
+  search.double_support_ratios = {0.15, 0.2};
+  search.steps = 6;
+  const StepTable strict = generate_step_table(model, config.controller.walking, search, nullptr, nullptr);
+  search.relaxed_zmp_window = 1.0 / config.sim.drives.bandwidth_hz;
+  const StepTable relaxed = generate_step_table(model, config.controller.walking, search, nullptr, nullptr);
+  ASSERT_EQ(strict.rows.size(), 2u);
+  ASSERT_EQ(relaxed.rows.size(), 2u);
+  EXPECT_GT(strict.rows[0].zmp_margin, 0.0);  // 0.6 m/s passes as it is
+  EXPECT_DOUBLE_EQ(relaxed.rows[0].step_time, strict.rows[0].step_time);
+  EXPECT_DOUBLE_EQ(relaxed.rows[0].double_support_ratio, strict.rows[0].double_support_ratio);
+  EXPECT_DOUBLE_EQ(relaxed.rows[0].zmp_margin, strict.rows[0].zmp_margin);
+  EXPECT_LE(strict.rows[1].zmp_margin, 0.0);  // 0.7 m/s: no gait by each instant's ZMP
+  EXPECT_GT(relaxed.rows[1].zmp_margin, 0.0);
+  EXPECT_LE(std::abs(relaxed.rows[1].step_time - relaxed.rows[0].step_time), search.max_step_time_change + 1e-9);
 }
 
 }  // namespace
