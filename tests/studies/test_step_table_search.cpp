@@ -44,15 +44,19 @@ TEST(StepTableSearch, ShippedTablesBoundTheCommands) {
   }
 }
 
-// Where no gait passes, criterion 2 may average the ZMP over the drives' period
-// (`step_table_relaxed_zmp_window`): JVRC-1's swing leg, stopping short before touchdown at 0.7 m/s,
-// throws the instantaneous ZMP past the toe for a few milliseconds, which condemns a gait that walks.
-TEST(StepTableSearch, AShortZmpExcursionDoesNotCondemnAGaitThatWalks) {
+RunConfig jvrc1_config() {
   Scenario s;
   s.file = "test";
   s.robot = "jvrc1";
   s.duration = 1.0;
-  const RunConfig config = make_run_config(s);
+  return make_run_config(s);
+}
+
+// Where no gait passes, criterion 2 may average the ZMP over the drives' period
+// (`step_table_relaxed_zmp_window`): JVRC-1's swing leg, stopping short before touchdown at 0.7 m/s,
+// throws the instantaneous ZMP past the toe for a few milliseconds, which condemns a gait that walks.
+TEST(StepTableSearch, AShortZmpExcursionDoesNotCondemnAGaitThatWalks) {
+  const RunConfig config = jvrc1_config();
   const RobotModel model = load_controller_model(config);
   const WalkingControllerParams& base = config.controller.walking;
   const double speed = 0.7, step_time = 0.45, double_support = 0.2, one_cycle = base.rmrc.dt;
@@ -70,11 +74,7 @@ TEST(StepTableSearch, AShortZmpExcursionDoesNotCondemnAGaitThatWalks) {
 // The relaxed criterion only adds rows above the fastest row that passed; the rows that passed stay
 // exactly as the strict search chose them.
 TEST(StepTableSearch, TheRelaxedCriterionOnlyAddsFasterRows) {
-  Scenario s;
-  s.file = "test";
-  s.robot = "jvrc1";
-  s.duration = 1.0;
-  const RunConfig config = make_run_config(s);
+  const RunConfig config = jvrc1_config();
   const RobotModel model = load_controller_model(config);
   StepTableSearch search;
   search.speeds = {0.6, 0.7};
