@@ -111,7 +111,7 @@ CandidateResult evaluate_step_candidate(const RobotModel& model, const WalkingCo
     }
     history.push_back(rmrc.qpos_d());
     if (history.size() > 3) history.pop_front();
-    if (history.size() < 3) continue;
+    if (history.size() < 3 || (window == 1 && i % 10 != 0)) continue;  // each instant: every 10th is judged
     double normal_force = 0.0;
     const Eigen::Vector2d zmp = multibody_zmp(model, data, history[0], history[1], history[2], dt, &normal_force);
     recent.push_back({normal_force * zmp, normal_force, controller.pattern()});
