@@ -147,6 +147,13 @@ void TerrainAdaptation::return_tilt(Foot& foot, double dt) {
   foot.tilt += dt * foot.tilt_rate;
 }
 
+double TerrainAdaptation::lean_share(const Foot& foot, double lean) {
+  // A search lowered the offset below its aim (change < 0), a latch held it above (change > 0);
+  // the lean explains as much of that as it has the same sign and no more.
+  const double change = foot.offset - foot.aim;
+  return std::clamp(lean, std::min(0.0, -change), std::max(0.0, -change));
+}
+
 void TerrainAdaptation::set_offset(Foot& foot, double offset, double dt) {
   foot.rate = (offset - foot.offset) / dt;
   foot.offset = offset;
@@ -154,7 +161,8 @@ void TerrainAdaptation::set_offset(Foot& foot, double offset, double dt) {
 
 void TerrainAdaptation::step(double dt, const PatternSample& s, const std::array<Wrench, 2>& measured,
                              const std::array<Wrench, 2>& desired, const std::array<double, 2>& ground_above_command,
-                             const std::array<bool, 2>& trusted, const std::array<Eigen::Vector2d, 2>& turn_above_command) {
+                             const std::array<bool, 2>& trusted, const std::array<Eigen::Vector2d, 2>& turn_above_command,
+                             const std::array<double, 2>& lean_above_command) {
   if (!params_.enabled) return;
   const double filter = dt / (params_.filter_time + dt);
   for (int k = 0; k < 2; ++k) {
@@ -186,6 +194,7 @@ void TerrainAdaptation::step(double dt, const PatternSample& s, const std::array
         // foot neither pushes into the ground it lifts off from nor jerks.
         double target = other.ground;
         take_slope(foot, other, plan, dt, target);
+        foot.aim = target;
         const double clearance = plan.position.z() - foot.planned_ground;
         if (plan.velocity.z() < 0.0 && clearance > 0.0) {
           const double share = std::min(1.0, -plan.velocity.z() * dt / clearance);
@@ -209,9 +218,11 @@ void TerrainAdaptation::step(double dt, const PatternSample& s, const std::array
       foot.slope_rate.setZero();
       // A foot that met the ground early but lost it again by the planned touchdown (it brushed
       // the ground) searches like one that met none.
+      const double lean = params_.lean_correction ? lean_above_command[k] - lean_above_command[1 - k] : 0.0;
       if (foot.phase == Phase::Swing || foot.phase == Phase::Latched) {
         foot.phase = contact ? Phase::Stance : Phase::Searching;
         foot.search_time = 0.0;
+        foot.lean = lean_share(foot, lean);
       }
       // A foot that loses its contact again before it found its support (it met the ground on one
       // edge and bounced off) while the plan shifts load onto it searches again: position control
@@ -224,6 +235,7 @@ void TerrainAdaptation::step(double dt, const PatternSample& s, const std::array
         foot.search_time += dt;
         if (contact || foot.offset <= lowest) {
           foot.phase = Phase::Stance;
+          foot.lean = lean_share(foot, lean);
         } else if (foot.search_time > params_.search_delay) {
           set_offset(foot, std::max(foot.offset - params_.search_speed * dt, lowest), dt);
         } else {
@@ -232,7 +244,7 @@ void TerrainAdaptation::step(double dt, const PatternSample& s, const std::array
       }
       if (foot.phase == Phase::Stance) {
         // Force control lowers or raises the foot onto the ground on top of the offset.
-        foot.ground = foot.offset + ground_above_command[k];
+        foot.ground = foot.offset + ground_above_command[k] + foot.lean;
         foot.rate = 0.0;
         settle(foot, k, dt, desired[k], loading);
         measure_slope(foot, k, plan.yaw, turn_above_command[k]);

@@ -44,6 +44,10 @@ struct TerrainAdaptationParams {
   // no force and reaches contact_force only as the plan shifts load onto it (about 25 ms for LOLA);
   // searching at once would lower every foothold by a few millimetres and walk the estimate down.
   double search_delay = 0.04;
+  // A foothold found where it is only because the robot leans (step(): `lean_above_command`) is
+  // not taken for a step in the ground. Off by default: pushed robots fell more with it
+  // (docs/stabilizer.md, "The lean at touchdown").
+  bool lean_correction = false;
   double max_step = 0.05;         // [m] bound of a foothold's height against the other foot's
   double com_follow_time = 0.3;   // [s] time constant of the CoM height following the footholds
   double cop_band = 0.04;         // [m] desired centre of pressure this far from the measured one at touchdown: the sole lacks support there
@@ -72,10 +76,16 @@ class TerrainAdaptation {
   // ground is still found while the other foot's reading is trusted: its load is the weight the
   // other foot no longer carries. Without any trusted reading the CoM height holds too.
   // `turn_above_command`: force control's turn of each foot (φ_x, φ_y of eq. 20's Δx_λ) [rad].
+  // `lean_above_command`: how far the upper body's lean lifts each sole above its commanded height
+  // (the commands assume the planned orientation) [m]. Leaning back, the front foot meets the
+  // ground late and searches; leaning forward, early and is latched: the ground is no lower or
+  // higher for that. Of the change of offset from its aim that the search or the latch made, the
+  // part the lean explains (its difference to the other foot's) is not taken for ground.
   void step(double dt, const PatternSample& s, const std::array<Wrench, 2>& measured,
             const std::array<Wrench, 2>& desired = {}, const std::array<double, 2>& ground_above_command = {0.0, 0.0},
             const std::array<bool, 2>& trusted = {true, true},
-            const std::array<Eigen::Vector2d, 2>& turn_above_command = {Eigen::Vector2d::Zero(), Eigen::Vector2d::Zero()});
+            const std::array<Eigen::Vector2d, 2>& turn_above_command = {Eigen::Vector2d::Zero(), Eigen::Vector2d::Zero()},
+            const std::array<double, 2>& lean_above_command = {0.0, 0.0});
 
   // Offsets of the planned heights [m] and their rates [m/s]: per foot (by Side) and of the CoM.
   // A tilted foot's ankle moves with the tilt so that the edge it turned about stays in place.
@@ -104,6 +114,8 @@ class TerrainAdaptation {
     double offset = 0.0, rate = 0.0;
     double latched_height = 0.0;  // planned height + offset when the ground was met
     double search_time = 0.0;     // time since the planned touchdown without contact
+    double aim = 0.0;             // the ground height this foot aimed at in the air [m]
+    double lean = 0.0;            // of its offset's change from that aim, what the lean made [m]
     double filtered_force = 0.0;
     double planned_ground = 0.0;  // the plan's height of this foot standing (its swing clearance is above it)
     double filtered_torque = 0.0;  // T_y, filtered like the force
@@ -119,6 +131,8 @@ class TerrainAdaptation {
     Eigen::Vector2d position = Eigen::Vector2d::Zero();  // planned x, y of the current or last foothold [m]
   };
   void set_offset(Foot& foot, double offset, double dt);
+  // Of a foot's offset change from its aim when it met the ground, the part `lean` explains.
+  static double lean_share(const Foot& foot, double lean);
   // Edge contact at touchdown: the tilt search, and the tilt's return to zero in the swing.
   void settle(Foot& foot, int k, double dt, const Wrench& desired, bool loading);
   void return_tilt(Foot& foot, double dt);

@@ -207,7 +207,24 @@ void WalkingController::adapt_to_terrain(const SensorData& sensors) {
   terrain_.step(params_.rmrc.dt, plan_.sample(), sensors.foot_wrench, stabilizer_.desired(),
                 {m[0].offset[0] + compliance * std::max(0.0, sensors.foot_wrench[0].force.z()),
                  m[1].offset[0] + compliance * std::max(0.0, sensors.foot_wrench[1].force.z())},
-                health().force_torque, {m[0].offset.tail<2>(), m[1].offset.tail<2>()});
+                health().force_torque, {m[0].offset.tail<2>(), m[1].offset.tail<2>()},
+                {lean_above_command(Side::Left, sensors), lean_above_command(Side::Right, sensors)});
+}
+
+double WalkingController::lean_above_command(Side side, const SensorData& sensors) const {
+  const FootInfo& foot = model_.foot(side);
+  const BodyFrames& commanded = rmrc_.task().frames();
+  const Eigen::Vector3d sole = foot.sensor_position + Eigen::Vector3d(0.0, 0.0, foot.sole_z);
+  const Eigen::Vector3d from_pelvis = commanded.rotation[foot.body] * sole + commanded.position[foot.body] -
+                                      commanded.position[model_.pelvis_body()];
+  // The lean in the walking direction only: it has the same sign at every touchdown (the gait's
+  // sway) and so adds up step by step; the sideways lean changes sign from one foot to the other.
+  const Eigen::Matrix3d lean =
+      sensors.imu_orientation.toRotationMatrix() * commanded.rotation[model_.upper_body()].transpose();
+  const double heading = plan_.sample().heading;
+  const Eigen::Vector3d forward(std::cos(heading), std::sin(heading), 0.0);
+  const double above = (lean * forward).z() * forward.dot(from_pelvis);
+  return std::isfinite(above) ? above : 0.0;
 }
 
 void WalkingController::stabilize(const SensorData& sensors) {

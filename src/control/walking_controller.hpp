@@ -84,6 +84,9 @@ class WalkingController final : public Controller {
   void adapt_steps(const SensorData& sensors);
   // The footholds' and the CoM's heights from the F/T sensors (both needed).
   void adapt_to_terrain(const SensorData& sensors);
+  // How far the upper body's estimated forward lean lifts a foot's sole above where the last
+  // set-points put it relative to the pelvis: the commanded chain turned to that lean [m].
+  double lean_above_command(Side side, const SensorData& sensors) const;
   // eqs. (10)–(20) with the state estimate: the feet's modification Δx_λ of eq. (21)'s reference;
   // and the upper body's lean (the hip strategy, control/upper_body_lean).
   void stabilize(const SensorData& sensors);

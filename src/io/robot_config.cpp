@@ -269,6 +269,8 @@ const ParameterTable<TerrainAdaptationParams> kTerrainAdaptationParameters = {
      "descent of a foot that finds no ground at the planned touchdown"},
     {"search_delay", &TerrainAdaptationParams::search_delay, "s", kNonNegative,
      "the descent starts this long after the planned touchdown"},
+    {"lean_correction", &TerrainAdaptationParams::lean_correction, "", {},
+     "a foothold met early or late only because the upper body leans is not taken for a step in the ground"},
     {"max_step", &TerrainAdaptationParams::max_step, "m", kPositive,
      "bound of a foothold's height against the other foot's"},
     {"com_follow_time", &TerrainAdaptationParams::com_follow_time, "s", kPositive,

@@ -18,6 +18,7 @@ namespace biped {
 namespace {
 
 constexpr double kDt = 0.001;
+const std::array<Eigen::Vector2d, 2> kNoTurn = {Eigen::Vector2d::Zero(), Eigen::Vector2d::Zero()};
 
 std::array<Wrench, 2> loads(double left, double right) {
   std::array<Wrench, 2> w;
@@ -89,6 +90,46 @@ TEST(TerrainAdaptation, LateContactSearchesDownForTheGround) {
   s.feet[0].in_contact = true;
   for (int i = 0; i < 2000; ++i) bounded.step(kDt, s, loads(-10.0, 500.0));
   EXPECT_NEAR(bounded.foot_offset(0), -params.max_step, 1e-12);
+}
+
+// The robot leans back at a touchdown: the lean lifts the front (left) foot 3 mm more than the rear
+// one, so it finds its ground late and searches. The ground is not lower for that: of what the
+// search went down, the 3 mm the lean explains stay out of the foothold's height; what it does not
+// explain (a real step down) stays in. Without the correction the foothold is as low as the search.
+TEST(TerrainAdaptation, WhatTheLeanExplainsOfASearchIsNotGround) {
+  for (const double step_down : {0.0, 0.01}) {
+    double ground[2] = {0.0, 0.0};
+    for (const bool correction : {true, false}) {
+      TerrainAdaptationParams params;
+      params.lean_correction = correction;
+      TerrainAdaptation terrain(test::load_model("lola"), params);
+      const std::array<double, 2> lean = {0.002, -0.001};
+      PatternSample s;
+      s.feet[0].in_contact = false;
+      terrain.step(kDt, s, loads(-10.0, 500.0), {}, {0.0, 0.0}, {true, true}, kNoTurn, lean);
+      s.feet[0].in_contact = true;
+      // It searches until it has gone down what the lean lifted it plus the step.
+      const double search_time = params.search_delay + (0.003 + step_down) / params.search_speed;
+      const int cycles = static_cast<int>(std::lround(search_time / kDt));
+      for (int i = 0; i < cycles; ++i) terrain.step(kDt, s, loads(-10.0, 500.0), {}, {0.0, 0.0}, {true, true}, kNoTurn, lean);
+      for (int i = 0; i < 20; ++i) terrain.step(kDt, s, loads(300.0, 200.0), {}, {0.0, 0.0}, {true, true}, kNoTurn, lean);
+      ground[correction ? 0 : 1] = terrain.ground_height(0);
+    }
+    EXPECT_NEAR(ground[0], -step_down, 1e-3) << "with the correction, step down " << step_down;
+    EXPECT_NEAR(ground[1], -step_down - 0.003, 1e-3) << "without, step down " << step_down;
+  }
+  // Leaning the other way the front foot would land early; a late foot's search is not the lean's.
+  TerrainAdaptationParams params;
+  TerrainAdaptation terrain(test::load_model("lola"), params);
+  const std::array<double, 2> lean = {-0.002, 0.001};
+  PatternSample s;
+  s.feet[0].in_contact = false;
+  terrain.step(kDt, s, loads(-10.0, 500.0), {}, {0.0, 0.0}, {true, true}, kNoTurn, lean);
+  s.feet[0].in_contact = true;
+  const int cycles = static_cast<int>(std::lround((params.search_delay + 0.01 / params.search_speed) / kDt));
+  for (int i = 0; i < cycles; ++i) terrain.step(kDt, s, loads(-10.0, 500.0), {}, {0.0, 0.0}, {true, true}, kNoTurn, lean);
+  for (int i = 0; i < 20; ++i) terrain.step(kDt, s, loads(300.0, 200.0), {}, {0.0, 0.0}, {true, true}, kNoTurn, lean);
+  EXPECT_NEAR(terrain.ground_height(0), -0.01, 1e-3);
 }
 
 // A foot that touches the ground on its way down but has lost it again by the planned touchdown
@@ -349,6 +390,24 @@ TEST(TerrainAdaptation, FlatGroundFootholdsStayAtTheGroundsHeight) {
   const ScenarioResult result = run_scenario(s, make_run_config(s), "", &observer);
   ASSERT_FALSE(result.run.fell);
   EXPECT_LT(observer.largest, 0.005);
+}
+
+// The robot's lean at each touchdown, on against off, in the default configuration (realistic
+// sensor errors, the attitude estimate): LOLA 20 s at 0.6 m/s on flat ground. Measured: the
+// footholds end at most 8.4 mm off with the correction, 3.3 cm without.
+TEST(TerrainAdaptation, TheLeanCorrectionKeepsTheFootholdsNearTheGround) {
+  double largest[2] = {0.0, 0.0};
+  for (const bool correction : {true, false}) {
+    const Scenario s = load_scenario(test::source_path("config/scenarios/lola-walk.yaml"),
+                                     {std::string("controller.terrain_adaptation.lean_correction=") +
+                                      (correction ? "true" : "false")});
+    test::LargestFootholdOffset observer;
+    const ScenarioResult result = run_scenario(s, make_run_config(s), "", &observer);
+    ASSERT_FALSE(result.run.fell) << correction;
+    largest[correction ? 0 : 1] = observer.largest;
+  }
+  EXPECT_LT(largest[0], 0.015);
+  EXPECT_GT(largest[1], 2.0 * largest[0]);
 }
 
 // With ideal sensors: the adaptation's own effect. (With the robot files' realistic sensor errors
