@@ -208,7 +208,9 @@ void WalkingController::adapt_to_terrain(const SensorData& sensors) {
                 {m[0].offset[0] + compliance * std::max(0.0, sensors.foot_wrench[0].force.z()),
                  m[1].offset[0] + compliance * std::max(0.0, sensors.foot_wrench[1].force.z())},
                 health().force_torque, {m[0].offset.tail<2>(), m[1].offset.tail<2>()},
-                {lean_above_command(Side::Left, sensors), lean_above_command(Side::Right, sensors)});
+                params_.terrain.lean_correction
+                    ? std::array<double, 2>{lean_above_command(Side::Left, sensors), lean_above_command(Side::Right, sensors)}
+                    : std::array<double, 2>{0.0, 0.0});
 }
 
 double WalkingController::lean_above_command(Side side, const SensorData& sensors) const {
