@@ -11,13 +11,7 @@
 namespace biped {
 namespace {
 
-RunConfig lola() {
-  Scenario s;
-  s.file = "test.yaml";
-  s.robot = "lola";
-  s.duration = 1.0;
-  return make_run_config(s);
-}
+RunConfig lola() { return make_run_config(test::robot_scenario("lola")); }
 
 // What write_gain_file writes reads back as an include and as the same assignments.
 TEST(GainFile, WrittenFileReadsBackAsIncludeAndAssignments) {

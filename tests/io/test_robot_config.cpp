@@ -12,20 +12,12 @@
 namespace biped {
 namespace {
 
-Scenario scenario_with(const std::string& robot) {
-  Scenario s;
-  s.file = "test.yaml";
-  s.robot = robot;
-  s.duration = 1.0;
-  return s;
-}
-
 TEST(RobotConfig, BothRobotsHaveParameterFiles) {
   const auto robots = known_robots();
   EXPECT_NE(std::find(robots.begin(), robots.end(), "lola"), robots.end());
   EXPECT_NE(std::find(robots.begin(), robots.end(), "johnnie"), robots.end());
   for (const auto& name : robots) {
-    const RunConfig c = make_run_config(scenario_with(name));
+    const RunConfig c = make_run_config(test::robot_scenario(name));
     EXPECT_TRUE(std::filesystem::exists(c.sim.world.robot_mjcf));
     EXPECT_EQ(c.controller.model_path, c.sim.world.robot_mjcf);
     EXPECT_GE(c.sim.drives.bandwidth_hz, 15.0);
@@ -35,7 +27,7 @@ TEST(RobotConfig, BothRobotsHaveParameterFiles) {
 
 TEST(RobotConfig, UnknownRobotListsTheKnownOnes) {
   try {
-    make_run_config(scenario_with("asimo"));
+    make_run_config(test::robot_scenario("asimo"));
     FAIL();
   } catch (const InputError& e) {
     const std::string msg = e.what();
@@ -45,7 +37,7 @@ TEST(RobotConfig, UnknownRobotListsTheKnownOnes) {
 }
 
 TEST(RobotConfig, ScenarioOverridesControllerAndSimulationKeys) {
-  Scenario s = scenario_with("lola");
+  Scenario s = test::robot_scenario("lola");
   s.controller = YAML::Load("{stabilizer: false, ramp_time: 0.5}");
   s.simulation = YAML::Load("{timestep: 0.0005, control_period: 0.001}");
   const RunConfig c = make_run_config(s);
@@ -63,14 +55,14 @@ TEST(RobotConfig, ScenarioOverridesControllerAndSimulationKeys) {
 // The stabilizer's gains and extensions are read from the robot's file; a scenario overrides single
 // keys and keeps the rest; inconsistent values name the key.
 TEST(RobotConfig, StabilizationKeysMergeAndAreChecked) {
-  Scenario s = scenario_with("lola");
+  Scenario s = test::robot_scenario("lola");
   s.controller = YAML::Load("{stabilization: {force_integral_gain: 80, stiffness_adaptation: true}, "
                             "sensor_limits: {frozen_cycles: 0}}");
   const RunConfig c = make_run_config(s);
   const StabilizerParams& p = c.controller.walking.stabilization;
   EXPECT_DOUBLE_EQ(p.force_integral_gain, 80.0);
   EXPECT_TRUE(p.stiffness_adaptation);
-  EXPECT_DOUBLE_EQ(p.tilt_gain, make_run_config(scenario_with("lola")).controller.walking.stabilization.tilt_gain);
+  EXPECT_DOUBLE_EQ(p.tilt_gain, make_run_config(test::robot_scenario("lola")).controller.walking.stabilization.tilt_gain);
   EXPECT_EQ(c.controller.walking.sensor_limits.frozen_cycles, 0);
 
   s.controller = YAML::Load("{stabilization: {contact_force_low: 200, contact_force_high: 100}}");
@@ -97,7 +89,7 @@ TEST(RobotConfig, StabilizationKeysMergeAndAreChecked) {
 }
 
 TEST(RobotConfig, ScenarioValuesReachEveryControllerSection) {
-  Scenario s = scenario_with("lola");
+  Scenario s = test::robot_scenario("lola");
   s.controller = YAML::Load("{software_limit_margin_deg: 2, step_time: 0.9, task_gain: 0.5, ramp_time: 2, "
                             "limits: {vx_rate: 0.3}, sensor_limits: {frozen_cycles: 7, max_force: 900}, "
                             "terrain_adaptation: {enabled: false, cop_band: 0.05}}");
@@ -117,7 +109,7 @@ TEST(RobotConfig, ScenarioValuesReachEveryControllerSection) {
 }
 
 std::string config_error(const char* section, const char* yaml) {
-  Scenario s = scenario_with("lola");
+  Scenario s = test::robot_scenario("lola");
   (std::string(section) == "controller" ? s.controller : s.simulation) = YAML::Load(yaml);
   try {
     make_run_config(s);
@@ -173,7 +165,7 @@ TEST(RobotConfig, EveryReferenceKeyOfTheScenarioSectionsIsReadWithItsDefault) {
     ++overridden;
   }
   EXPECT_GT(overridden, 50);
-  Scenario s = scenario_with(test::model_path("johnnie"));
+  Scenario s = test::robot_scenario(test::model_path("johnnie"));
   s.controller = root["controller"];
   s.simulation = root["simulation"];
   const RunConfig c = make_run_config(s);
@@ -195,7 +187,7 @@ class CustomRobotFile : public ::testing::Test {
 
   RunConfig read(const std::string& body) {
     std::ofstream(file_) << "model: " << test::model_path("lola") << "\n" << body;
-    return make_run_config(scenario_with("custom"));
+    return make_run_config(test::robot_scenario("custom"));
   }
   std::string error_of(const std::string& body) {
     try {
@@ -233,12 +225,12 @@ TEST_F(CustomRobotFile, ErrorsNameFileKeyAndLine) {
 
 // A robot file anywhere (a robot being brought in), by its path.
 TEST(RobotConfig, RobotFileByPath) {
-  const RunConfig c = make_run_config(scenario_with(test::source_path("config/robots/jvrc1.yaml")));
+  const RunConfig c = make_run_config(test::robot_scenario(test::source_path("config/robots/jvrc1.yaml")));
   EXPECT_EQ(c.robot, "jvrc1");
   EXPECT_EQ(c.robot_file, test::source_path("config/robots/jvrc1.yaml"));
   EXPECT_EQ(c.sim.world.model_map.root_body, "PELVIS_S");
   try {
-    make_run_config(scenario_with("/nonexistent/robot.yaml"));
+    make_run_config(test::robot_scenario("/nonexistent/robot.yaml"));
     FAIL();
   } catch (const InputError& e) {
     EXPECT_EQ(std::string(e.what()), "test.yaml: key 'robot': no such robot file: /nonexistent/robot.yaml");
@@ -275,14 +267,14 @@ TEST_F(CustomRobotFile, IncludesOverrideTheRobotFileInOrder) {
 }
 
 TEST(RobotConfig, BareMjcfPathUsesDefaults) {
-  const RunConfig c = make_run_config(scenario_with(test::model_path("johnnie")));
+  const RunConfig c = make_run_config(test::robot_scenario(test::model_path("johnnie")));
   EXPECT_EQ(c.robot, "johnnie");
   EXPECT_TRUE(c.robot_file.empty());
-  EXPECT_THROW(make_run_config(scenario_with("/nonexistent/robot.xml")), InputError);
+  EXPECT_THROW(make_run_config(test::robot_scenario("/nonexistent/robot.xml")), InputError);
 }
 
 TEST(RobotConfig, ModelMapOfJvrc1ReachesTheSimulationAndIsChecked) {
-  const RunConfig config = make_run_config(scenario_with("jvrc1"));
+  const RunConfig config = make_run_config(test::robot_scenario("jvrc1"));
   const ModelMap& map = config.sim.world.model_map;
   EXPECT_EQ(map.root_body, "PELVIS_S");
   EXPECT_EQ(map.imu_orientation, "");  // `none`
@@ -292,7 +284,7 @@ TEST(RobotConfig, ModelMapOfJvrc1ReachesTheSimulationAndIsChecked) {
   EXPECT_NEAR(map.stand_pose.at("L_KNEE"), 44.0 * M_PI / 180.0, 1e-12);
   EXPECT_EQ(map.passive_joints.size(), 10u);
   EXPECT_GT(map.torque_limits.at("R_HIP_P"), 0.0);
-  EXPECT_EQ(make_run_config(scenario_with("lola")).sim.world.model_map.root_body, "pelvis");  // the contract
+  EXPECT_EQ(make_run_config(test::robot_scenario("lola")).sim.world.model_map.root_body, "pelvis");  // the contract
 }
 
 TEST_F(CustomRobotFile, ModelMapErrorsNameFileAndKey) {

@@ -15,10 +15,7 @@ namespace biped {
 namespace {
 
 RunConfig lola(const std::string& controller_yaml = "") {
-  Scenario s;
-  s.file = "test.yaml";
-  s.robot = "lola";
-  s.duration = 1.0;
+  Scenario s = test::robot_scenario("lola");
   if (!controller_yaml.empty()) s.controller = YAML::Load(controller_yaml);
   return make_run_config(s);
 }

@@ -28,10 +28,7 @@ TEST(StepTableSearch, CriterionPrefersFeasibleGaitsWithZmpMargin) {
 // with the required ZMP margin; a scenario's own vx_max goes beyond it.
 TEST(StepTableSearch, ShippedTablesBoundTheCommands) {
   for (const char* robot : {"lola", "johnnie"}) {
-    Scenario s;
-    s.file = "test";
-    s.robot = robot;
-    s.duration = 1.0;
+    Scenario s = test::robot_scenario(robot);
     const RunConfig config = make_run_config(s);
     const StepTable& table = config.controller.walking.plan.table;
     ASSERT_FALSE(table.empty()) << robot;
@@ -44,13 +41,7 @@ TEST(StepTableSearch, ShippedTablesBoundTheCommands) {
   }
 }
 
-RunConfig jvrc1_config() {
-  Scenario s;
-  s.file = "test";
-  s.robot = "jvrc1";
-  s.duration = 1.0;
-  return make_run_config(s);
-}
+RunConfig jvrc1_config() { return make_run_config(test::robot_scenario("jvrc1")); }
 
 // Where no gait passes, criterion 2 may average the ZMP over the drives' period
 // (`step_table_relaxed_zmp_window`): JVRC-1's swing leg, stopping short before touchdown at 0.7 m/s,
