@@ -18,6 +18,7 @@ TerrainAdaptation::TerrainAdaptation(const RobotModel& model, const TerrainAdapt
 void TerrainAdaptation::reset() {
   feet_ = {};
   com_offset_ = com_rate_ = 0.0;
+  newest_measured_ = -1;
 }
 
 void TerrainAdaptation::follow_plan(Foot& foot, const Foot& other, const FootReference& plan,
@@ -25,6 +26,7 @@ void TerrainAdaptation::follow_plan(Foot& foot, const Foot& other, const FootRef
   foot.settling = false;
   foot.tilt_rate_sign = 0.0;
   foot.cop_error = 0.0;
+  foot.measuring = foot.measured = false;
   if (plan.in_contact) {
     foot.tilt_rate = 0.0;
     foot.slope_rate.setZero();
@@ -147,13 +149,6 @@ void TerrainAdaptation::return_tilt(Foot& foot, double dt) {
   foot.tilt += dt * foot.tilt_rate;
 }
 
-double TerrainAdaptation::lean_share(const Foot& foot, double lean) {
-  // A search lowered the offset below its aim (change < 0), a latch held it above (change > 0);
-  // the lean explains as much of that as it has the same sign and no more.
-  const double change = foot.offset - foot.aim;
-  return std::clamp(lean, std::min(0.0, -change), std::max(0.0, -change));
-}
-
 void TerrainAdaptation::set_offset(Foot& foot, double offset, double dt) {
   foot.rate = (offset - foot.offset) / dt;
   foot.offset = offset;
@@ -162,7 +157,7 @@ void TerrainAdaptation::set_offset(Foot& foot, double offset, double dt) {
 void TerrainAdaptation::step(double dt, const PatternSample& s, const std::array<Wrench, 2>& measured,
                              const std::array<Wrench, 2>& desired, const std::array<double, 2>& ground_above_command,
                              const std::array<bool, 2>& trusted, const std::array<Eigen::Vector2d, 2>& turn_above_command,
-                             const std::array<double, 2>& lean_above_command) {
+                             const std::array<double, 2>& measured_ground) {
   if (!params_.enabled) return;
   const double filter = dt / (params_.filter_time + dt);
   for (int k = 0; k < 2; ++k) {
@@ -194,7 +189,6 @@ void TerrainAdaptation::step(double dt, const PatternSample& s, const std::array
         // foot neither pushes into the ground it lifts off from nor jerks.
         double target = other.ground;
         take_slope(foot, other, plan, dt, target);
-        foot.aim = target;
         const double clearance = plan.position.z() - foot.planned_ground;
         if (plan.velocity.z() < 0.0 && clearance > 0.0) {
           const double share = std::min(1.0, -plan.velocity.z() * dt / clearance);
@@ -218,11 +212,14 @@ void TerrainAdaptation::step(double dt, const PatternSample& s, const std::array
       foot.slope_rate.setZero();
       // A foot that met the ground early but lost it again by the planned touchdown (it brushed
       // the ground) searches like one that met none.
-      const double lean = params_.lean_correction ? lean_above_command[k] - lean_above_command[1 - k] : 0.0;
       if (foot.phase == Phase::Swing || foot.phase == Phase::Latched) {
         foot.phase = contact ? Phase::Stance : Phase::Searching;
         foot.search_time = 0.0;
-        foot.lean = lean_share(foot, lean);
+        foot.measuring = true;
+        foot.measured = false;
+        foot.reference = other.measured ? other.measured_height : other.ground;
+        foot.step_sum = 0.0;
+        foot.step_samples = 0;
       }
       // A foot that loses its contact again before it found its support (it met the ground on one
       // edge and bounced off) while the plan shifts load onto it searches again: position control
@@ -235,7 +232,6 @@ void TerrainAdaptation::step(double dt, const PatternSample& s, const std::array
         foot.search_time += dt;
         if (contact || foot.offset <= lowest) {
           foot.phase = Phase::Stance;
-          foot.lean = lean_share(foot, lean);
         } else if (foot.search_time > params_.search_delay) {
           set_offset(foot, std::max(foot.offset - params_.search_speed * dt, lowest), dt);
         } else {
@@ -244,8 +240,9 @@ void TerrainAdaptation::step(double dt, const PatternSample& s, const std::array
       }
       if (foot.phase == Phase::Stance) {
         // Force control lowers or raises the foot onto the ground on top of the offset.
-        foot.ground = foot.offset + ground_above_command[k] + foot.lean;
+        foot.ground = foot.offset + ground_above_command[k];
         foot.rate = 0.0;
+        measure_step(foot, k, s, measured_ground);
         settle(foot, k, dt, desired[k], loading);
         measure_slope(foot, k, plan.yaw, turn_above_command[k]);
       }
@@ -258,6 +255,44 @@ void TerrainAdaptation::step(double dt, const PatternSample& s, const std::array
   const double mean_ground = 0.5 * (feet_[0].ground + feet_[1].ground);
   com_rate_ = (mean_ground - com_offset_) / params_.com_follow_time;
   com_offset_ += com_rate_ * dt;
+  shift_to_measured_level(dt);
+}
+
+bool TerrainAdaptation::sole_lies_flat(const Foot& foot, int k) const {
+  if (foot.filtered_force <= params_.contact_force) return false;
+  const double x = -foot.filtered_torque / foot.filtered_force;  // T_y = −x_CoP F_z, sensor frame
+  return x > heel_x_[k] + kFlatSoleMargin && x < toe_x_[k] - kFlatSoleMargin;
+}
+
+void TerrainAdaptation::measure_step(Foot& foot, int k, const PatternSample& s,
+                                     const std::array<double, 2>& measured_ground) {
+  const Foot& other = feet_[1 - k];
+  if (!s.feet[1 - k].in_contact) foot.measuring = false;  // the step ends with the other foot's lift-off
+  // Both soles flat on the ground: a sole rolling over its edge lies above the ground under its
+  // sensor, one landing on its heel not yet on it.
+  if (!params_.measure_step_height || !foot.measuring || other.phase != Phase::Stance || !sole_lies_flat(foot, k) ||
+      !sole_lies_flat(other, 1 - k) || !std::isfinite(measured_ground[k]) || !std::isfinite(measured_ground[1 - k])) {
+    return;
+  }
+  foot.step_sum += measured_ground[k] - measured_ground[1 - k] - (foot.planned_ground - other.planned_ground);
+  ++foot.step_samples;
+  foot.measured_height = foot.reference + foot.step_sum / foot.step_samples;
+  foot.measured = true;
+  newest_measured_ = k;
+}
+
+void TerrainAdaptation::shift_to_measured_level(double dt) {
+  if (newest_measured_ < 0 || !feet_[newest_measured_].measured) return;
+  const Foot& newest = feet_[newest_measured_];
+  const double shift = std::clamp(newest.measured_height - newest.ground, -kLevelSpeed * dt, kLevelSpeed * dt);
+  for (Foot& foot : feet_) {
+    foot.offset += shift;
+    foot.rate += shift / dt;
+    foot.ground += shift;
+    foot.latched_height += shift;
+  }
+  com_offset_ += shift;
+  com_rate_ += shift / dt;
 }
 
 }  // namespace biped

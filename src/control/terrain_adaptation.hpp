@@ -15,6 +15,9 @@
 //  - the foot's height at touchdown is the ground height of that foothold; the next swing foot aims
 //    at the ground height of the stance foot, and the CoM height follows the mean ground height of
 //    the footholds, so the legs keep their planned length;
+//  - the level: in the double support after a touchdown the encoders and the IMU measure the new
+//    foothold's height against the other's; the footholds' heights chain these measured steps, and
+//    every height above moves together to them (an extension: see step());
 //  - downhill slopes: the orientation a standing foot is commanded to (the slope it took, its tilt,
 //    force control's turn of eq. 20) while its centre of pressure is inside the sole, so that the
 //    sole lies flat, is the ground's slope there. Where that slope descends from the stance foot
@@ -26,6 +29,7 @@
 // The outputs are height offsets added to the feet's and the CoM's planned heights, and tilts added
 // to the feet's planned orientations in eq. (21); force control (eq. 20) acts on top of them.
 #include <array>
+#include <cmath>
 
 #include <Eigen/Core>
 
@@ -44,10 +48,13 @@ struct TerrainAdaptationParams {
   // no force and reaches contact_force only as the plan shifts load onto it (about 25 ms for LOLA);
   // searching at once would lower every foothold by a few millimetres and walk the estimate down.
   double search_delay = 0.04;
-  // A foothold found where it is only because the robot leans (step(): `lean_above_command`) is
-  // not taken for a step in the ground. Off by default: pushed robots fell more with it
-  // (docs/stabilizer.md, "The lean at touchdown").
-  bool lean_correction = false;
+  // Each new foothold's height measured against the other foot's in the double support after its
+  // touchdown, by the encoders' leg kinematics turned by the IMU's orientation (step():
+  // `measured_ground`); all heights the adaptation commands then shift together to the measured
+  // level (below). Not while the upper body leans more than `step_height_max_lean` [rad] from its
+  // command: in larger motions the attitude estimate lags.
+  bool measure_step_height = true;
+  double step_height_max_lean = 0.035;
   double max_step = 0.05;         // [m] bound of a foothold's height against the other foot's
   double com_follow_time = 0.3;   // [s] time constant of the CoM height following the footholds
   double cop_band = 0.04;         // [m] desired centre of pressure this far from the measured one at touchdown: the sole lacks support there
@@ -76,16 +83,21 @@ class TerrainAdaptation {
   // ground is still found while the other foot's reading is trusted: its load is the weight the
   // other foot no longer carries. Without any trusted reading the CoM height holds too.
   // `turn_above_command`: force control's turn of each foot (φ_x, φ_y of eq. 20's Δx_λ) [rad].
-  // `lean_above_command`: how far the upper body's lean lifts each sole above its commanded height
-  // (the commands assume the planned orientation) [m]. Leaning back, the front foot meets the
-  // ground late and searches; leaning forward, early and is latched: the ground is no lower or
-  // higher for that. Of the change of offset from its aim that the search or the latch made, the
-  // part the lean explains (its difference to the other foot's) is not taken for ground.
+  // `measured_ground`: the height of the ground under each sole against a common point of the
+  // robot, vertical in the world (the sole's height from the encoders' leg kinematics turned by the
+  // IMU's orientation, plus its deflection under its load) [m]; not finite where not known. The
+  // searches and latches find each foothold relative to the command, and whatever lifts a landing
+  // foot above its command (the robot's lean at touchdown: the commands assume the planned
+  // orientation) makes every foothold found some millimetres low or high: their heights walk away
+  // step by step (LOLA's 0.5 s steps: 1.7 dm in 20 s). Measured, the footholds' heights chain
+  // the measured steps instead; every height the adaptation commands (the feet's offsets, the
+  // footholds, the CoM's) shifts together towards that level, which changes no joint angle: the walk
+  // stays as the searches and latches make it, the heights stay at the ground's.
   void step(double dt, const PatternSample& s, const std::array<Wrench, 2>& measured,
             const std::array<Wrench, 2>& desired = {}, const std::array<double, 2>& ground_above_command = {0.0, 0.0},
             const std::array<bool, 2>& trusted = {true, true},
             const std::array<Eigen::Vector2d, 2>& turn_above_command = {Eigen::Vector2d::Zero(), Eigen::Vector2d::Zero()},
-            const std::array<double, 2>& lean_above_command = {0.0, 0.0});
+            const std::array<double, 2>& measured_ground = {NAN, NAN});
 
   // Offsets of the planned heights [m] and their rates [m/s]: per foot (by Side) and of the CoM.
   // A tilted foot's ankle moves with the tilt so that the edge it turned about stays in place.
@@ -114,8 +126,13 @@ class TerrainAdaptation {
     double offset = 0.0, rate = 0.0;
     double latched_height = 0.0;  // planned height + offset when the ground was met
     double search_time = 0.0;     // time since the planned touchdown without contact
-    double aim = 0.0;             // the ground height this foot aimed at in the air [m]
-    double lean = 0.0;            // of its offset's change from that aim, what the lean made [m]
+    // The step measured in the double support after touchdown (measure_step):
+    bool measuring = false;        // from touchdown until the other foot lifts off
+    bool measured = false;         // measured_height holds a measurement
+    double reference = 0.0;        // the other foothold's (measured) ground height at touchdown [m]
+    double step_sum = 0.0;         // sum of the measured step's samples [m]
+    int step_samples = 0;
+    double measured_height = 0.0;  // reference + the mean measured step [m]
     double filtered_force = 0.0;
     double planned_ground = 0.0;  // the plan's height of this foot standing (its swing clearance is above it)
     double filtered_torque = 0.0;  // T_y, filtered like the force
@@ -131,8 +148,11 @@ class TerrainAdaptation {
     Eigen::Vector2d position = Eigen::Vector2d::Zero();  // planned x, y of the current or last foothold [m]
   };
   void set_offset(Foot& foot, double offset, double dt);
-  // Of a foot's offset change from its aim when it met the ground, the part `lean` explains.
-  static double lean_share(const Foot& foot, double lean);
+  // A standing foot's measured step against the other foot, while both soles lie flat.
+  void measure_step(Foot& foot, int k, const PatternSample& s, const std::array<double, 2>& measured_ground);
+  bool sole_lies_flat(const Foot& foot, int k) const;
+  // Every height the adaptation commands moves together towards the newest measured foothold.
+  void shift_to_measured_level(double dt);
   // Edge contact at touchdown: the tilt search, and the tilt's return to zero in the swing.
   void settle(Foot& foot, int k, double dt, const Wrench& desired, bool loading);
   void return_tilt(Foot& foot, double dt);
@@ -153,6 +173,7 @@ class TerrainAdaptation {
   // without a trusted reading has met the ground: above the estimate's errors (the upper body's
   // mass known to some 5 %, the CoM's vertical acceleration in the double support).
   static constexpr double kUntrustedContactShare = 0.2;
+  static constexpr double kLevelSpeed = 0.02;  // [m/s] that shift's speed at most
   static constexpr double kSwingSpeed = 0.5;  // [m/s] a swinging foot's offset moves to its target at most this fast
 
   static constexpr double kBandToStop = 0.5;  // share of cop_band inside which a started turn stops
@@ -164,6 +185,7 @@ class TerrainAdaptation {
   std::array<double, 2> right_y_{}, left_y_{};  // the soles' right and left edges (sensor frame) [m]
   std::array<Foot, 2> feet_;
   double com_offset_ = 0.0, com_rate_ = 0.0;
+  int newest_measured_ = -1;  // the foot whose measurement is the newest (-1: none)
 };
 
 }  // namespace biped

@@ -208,25 +208,26 @@ void WalkingController::adapt_to_terrain(const SensorData& sensors) {
                 {m[0].offset[0] + compliance * std::max(0.0, sensors.foot_wrench[0].force.z()),
                  m[1].offset[0] + compliance * std::max(0.0, sensors.foot_wrench[1].force.z())},
                 health().force_torque, {m[0].offset.tail<2>(), m[1].offset.tail<2>()},
-                params_.terrain.lean_correction
-                    ? std::array<double, 2>{lean_above_command(Side::Left, sensors), lean_above_command(Side::Right, sensors)}
-                    : std::array<double, 2>{0.0, 0.0});
+                params_.terrain.measure_step_height
+                    ? std::array<double, 2>{measured_ground(Side::Left, sensors), measured_ground(Side::Right, sensors)}
+                    : std::array<double, 2>{NAN, NAN});
 }
 
-double WalkingController::lean_above_command(Side side, const SensorData& sensors) const {
+double WalkingController::measured_ground(Side side, const SensorData& sensors) const {
+  if (!health().imu || health().encoder_failed.any()) return NAN;
+  const Eigen::Matrix3d upper_body = sensors.imu_orientation.toRotationMatrix();
+  // The lean from the commanded orientation: cos of its angle is the commanded vertical's z in the world.
+  const Eigen::Matrix3d lean = upper_body * rmrc_.task().frames().rotation[model_.upper_body()].transpose();
+  if (lean(2, 2) < std::cos(params_.terrain.step_height_max_lean)) return NAN;
+  // The encoders' kinematics have the base at the origin, unrotated; the measured upper-body
+  // orientation turns the whole chain (as in the CoM estimate).
+  const BodyFrames& measured = encoders_.frames();
+  const Eigen::Matrix3d base = upper_body * measured.rotation[model_.upper_body()].transpose();
   const FootInfo& foot = model_.foot(side);
-  const BodyFrames& commanded = rmrc_.task().frames();
-  const Eigen::Vector3d sole = foot.sensor_position + Eigen::Vector3d(0.0, 0.0, foot.sole_z);
-  const Eigen::Vector3d from_pelvis = commanded.rotation[foot.body] * sole + commanded.position[foot.body] -
-                                      commanded.position[model_.pelvis_body()];
-  // The lean in the walking direction only: it has the same sign at every touchdown (the gait's
-  // sway) and so adds up step by step; the sideways lean changes sign from one foot to the other.
-  const Eigen::Matrix3d lean =
-      sensors.imu_orientation.toRotationMatrix() * commanded.rotation[model_.upper_body()].transpose();
-  const double heading = plan_.sample().heading;
-  const Eigen::Vector3d forward(std::cos(heading), std::sin(heading), 0.0);
-  const double above = (lean * forward).z() * forward.dot(from_pelvis);
-  return std::isfinite(above) ? above : 0.0;
+  const Eigen::Vector3d sole = measured.rotation[foot.body] * (foot.sensor_position + Eigen::Vector3d(0.0, 0.0, foot.sole_z)) +
+                               measured.position[foot.body];
+  const double deflection = std::max(0.0, sensors.foot_wrench[index_of(side)].force.z()) / stabilizer_.contact_stiffness();
+  return (base * (sole - measured.position[model_.pelvis_body()])).z() + deflection;
 }
 
 void WalkingController::stabilize(const SensorData& sensors) {

@@ -84,9 +84,11 @@ class WalkingController final : public Controller {
   void adapt_steps(const SensorData& sensors);
   // The footholds' and the CoM's heights from the F/T sensors (both needed).
   void adapt_to_terrain(const SensorData& sensors);
-  // How far the upper body's estimated forward lean lifts a foot's sole above where the last
-  // set-points put it relative to the pelvis: the commanded chain turned to that lean [m].
-  double lean_above_command(Side side, const SensorData& sensors) const;
+  // The height of the ground under a foot's sole against the pelvis, vertical in the world: the
+  // encoders' leg kinematics turned by the estimated upper-body orientation, plus the sole's
+  // deflection under its measured load [m]. NaN while the IMU or an encoder has failed, or while
+  // the upper body leans more than the terrain adaptation's step_height_max_lean from its command.
+  double measured_ground(Side side, const SensorData& sensors) const;
   // eqs. (10)–(20) with the state estimate: the feet's modification Δx_λ of eq. (21)'s reference;
   // and the upper body's lean (the hip strategy, control/upper_body_lean).
   void stabilize(const SensorData& sensors);

@@ -222,15 +222,12 @@ TEST(WalkingControllerDegraded, StopsWithoutFallWhateverFails) {
 // foot reads the wrench asked of it the terrain adaptation goes on, and once the sensor is trusted
 // again it resumes from a consistent contact state, so the footholds stay at the ground's height
 // (holding the estimate and resuming with the contact state of the fault's start moved a foothold
-// by centimetres) and the robot stops without a fall. The attitude estimate is off here: with this
-// seed's sensor errors its own steady 0.1° lean moves the footholds by 2.4 cm in 9 s with no fault
-// at all (docs/stabilizer.md "Known limitations"), which would hide what the fault does.
+// by centimetres) and the robot stops without a fall.
 TEST(WalkingControllerDegraded, FootholdsStayOnTheGroundThroughATransientForceSensorFault) {
   for (const char* t : {"4.8", "5.2", "5.6"}) {
     const Scenario scenario =
         load_scenario(test::source_path("config/scenarios/lola-ft-frozen.yaml"),
-                      {"duration=9", std::string("sensors.faults=[{t: ") + t + ", sensor: ft_right, value: freeze, duration: 0.5}]",
-                       "controller.attitude_estimation.enabled=false"});
+                      {"duration=9", std::string("sensors.faults=[{t: ") + t + ", sensor: ft_right, value: freeze, duration: 0.5}]"});
     test::LargestFootholdOffset observer;
     const ScenarioResult r = run_scenario(scenario, make_run_config(scenario), "", &observer);
     EXPECT_FALSE(r.summary["fell"].get<bool>()) << "fault at " << t;
