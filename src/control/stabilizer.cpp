@@ -144,6 +144,11 @@ double Stabilizer::contact_stiffness() const {
   return params_.contact_stiffness * stiffness_scale_;
 }
 
+Eigen::Vector3d Stabilizer::sole_deflection(Side side, const Wrench& measured) const {
+  if (measured.force.z() <= 0.0) return Eigen::Vector3d::Zero();
+  return compliance_[index_of(side)] * controlled(measured) / stiffness_scale_;
+}
+
 void Stabilizer::step(double dt, const StabilizerInput& in) {
   const math::TiltAngles tilt = math::tilt_against_gravity(in.imu_orientation.toRotationMatrix());
   // Small-angle rates of the two tilt angles from the body-frame angular rate.

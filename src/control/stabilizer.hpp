@@ -100,6 +100,9 @@ class Stabilizer {
   const ContactModelParams& contact_params() const { return contact_params_; }
   // The contact stiffness in use: C, or its on-line estimate [N/m].
   double contact_stiffness() const;
+  // The sole's deflection (z, φ_x, φ_y) under a measured wrench by eq. (11)'s K⁻¹, with the
+  // elements in contact and the stiffness in use: z is the sink at the sensor point [m].
+  Eigen::Vector3d sole_deflection(Side side, const Wrench& measured) const;
 
  private:
   // eq. (10) with its saturation, from the tilt angles and their rates (sagittal, lateral).

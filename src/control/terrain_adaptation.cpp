@@ -218,8 +218,8 @@ void TerrainAdaptation::step(double dt, const PatternSample& s, const std::array
         foot.measuring = true;
         foot.measured = false;
         foot.reference = other.measured ? other.measured_height : other.ground;
-        foot.step_sum = 0.0;
-        foot.step_samples = 0;
+        foot.step_sum = {0.0, 0.0};
+        foot.step_samples = {0, 0};
       }
       // A foot that loses its contact again before it found its support (it met the ground on one
       // edge and bounced off) while the plan shifts load onto it searches again: position control
@@ -274,9 +274,14 @@ void TerrainAdaptation::measure_step(Foot& foot, int k, const PatternSample& s,
       !sole_lies_flat(other, 1 - k) || !std::isfinite(measured_ground[k]) || !std::isfinite(measured_ground[1 - k])) {
     return;
   }
-  foot.step_sum += measured_ground[k] - measured_ground[1 - k] - (foot.planned_ground - other.planned_ground);
-  ++foot.step_samples;
-  foot.measured_height = foot.reference + foot.step_sum / foot.step_samples;
+  // The samples from the plan's half of the load transfer on where there are any: early on, with
+  // one sole loaded on its heel and the other on its toe, the soles' sinks depart most from the
+  // contact model (LOLA, exact sensors: 0.4 mm per step against 0.1 later).
+  const int half = s.load_share[k] < 0.5 ? 0 : 1;
+  foot.step_sum[half] += measured_ground[k] - measured_ground[1 - k] - (foot.planned_ground - other.planned_ground);
+  ++foot.step_samples[half];
+  const int used = foot.step_samples[1] > 0 ? 1 : 0;
+  foot.measured_height = foot.reference + foot.step_sum[used] / foot.step_samples[used];
   foot.measured = true;
   newest_measured_ = k;
 }

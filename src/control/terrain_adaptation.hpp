@@ -130,8 +130,9 @@ class TerrainAdaptation {
     bool measuring = false;        // from touchdown until the other foot lifts off
     bool measured = false;         // measured_height holds a measurement
     double reference = 0.0;        // the other foothold's (measured) ground height at touchdown [m]
-    double step_sum = 0.0;         // sum of the measured step's samples [m]
-    int step_samples = 0;
+    // Sums and counts of the measured step's samples before and after the plan's half of the load transfer:
+    std::array<double, 2> step_sum = {0.0, 0.0};  // [m]
+    std::array<int, 2> step_samples = {0, 0};
     double measured_height = 0.0;  // reference + the mean measured step [m]
     double filtered_force = 0.0;
     double planned_ground = 0.0;  // the plan's height of this foot standing (its swing clearance is above it)

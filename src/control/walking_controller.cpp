@@ -226,7 +226,7 @@ double WalkingController::measured_ground(Side side, const SensorData& sensors) 
   const FootInfo& foot = model_.foot(side);
   const Eigen::Vector3d sole = measured.rotation[foot.body] * (foot.sensor_position + Eigen::Vector3d(0.0, 0.0, foot.sole_z)) +
                                measured.position[foot.body];
-  const double deflection = std::max(0.0, sensors.foot_wrench[index_of(side)].force.z()) / stabilizer_.contact_stiffness();
+  const double deflection = stabilizer_.sole_deflection(side, sensors.foot_wrench[index_of(side)]).x();
   return (base * (sole - measured.position[model_.pelvis_body()])).z() + deflection;
 }
 

@@ -139,6 +139,31 @@ TEST(Stabilizer, MeasuredToeAngleLeavesTheHeelElements) {
   for (int i = 0; i < left.count; ++i) EXPECT_EQ(left.in_contact[i], left.segment[i] == 0);
 }
 
+// sole_deflection inverts eq. (11): LOLA's flat sole pressed 1 mm into the ground under its sensor
+// and pitched 2 mrad toes-down (every element still in contact) gives back that sink and that
+// pitch, to eq. (11)'s linearization in the angle (1 µm, 1 %); no load, no deflection.
+TEST(Stabilizer, SoleDeflectionInvertsThePointContactModel) {
+  const RobotModel model = test::load_model("lola");
+  const StabilizerParams params;
+  Stabilizer stabilizer(model, params);
+  const FootInfo& foot = model.foot(Side::Left);
+  const Eigen::Vector3d sensor(0.1, 0.2, 0.1);
+  const double sink = 0.001, pitch = 0.002;
+  const Eigen::Matrix3d R = Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitY()).toRotationMatrix();
+  const double ground = sensor.z() + foot.sole_z + sink;
+  const Eigen::Vector3d lambda = point_contact_wrench(foot, stabilizer.contact_params(), 0.0, sensor, R, ground);
+  std::array<Wrench, 2> measured = standing_wrenches(0.0);
+  measured[0].force.z() = lambda[0];
+  measured[0].torque.x() = lambda[1];
+  measured[0].torque.y() = lambda[2];
+  stabilizer.update_contact_model(model.stand_pose(), measured);
+  const Eigen::Vector3d deflection = stabilizer.sole_deflection(Side::Left, measured[0]);
+  EXPECT_NEAR(deflection.x(), sink, 1e-6);
+  EXPECT_NEAR(deflection.y(), 0.0, 1e-9);
+  EXPECT_NEAR(deflection.z(), -pitch, 0.01 * pitch);
+  EXPECT_TRUE(stabilizer.sole_deflection(Side::Right, measured[1]).isZero());
+}
+
 // Tracks a normal force that ramps up by 200 N/s from the steady state; returns the final error.
 double ramp_tracking_error(const StabilizerParams& params) {
   const RobotModel model = test::load_model("lola");
