@@ -222,29 +222,40 @@ TEST(WalkingControllerDegraded, StopsWithoutFallWhateverFails) {
 // foot reads the wrench asked of it the terrain adaptation goes on, and once the sensor is trusted
 // again it resumes from a consistent contact state, so the footholds stay at the ground's height
 // (holding the estimate and resuming with the contact state of the fault's start moved a foothold
-// by centimetres) and the robot stops without a fall.
+// by centimetres) and the robot stops without a fall. Against the same run without the fault, whose
+// footholds drift with the attitude estimate's steady error (measured: 8 mm in 9 s; with the faults
+// 11.4, 10.6 and 7.3 mm).
 TEST(WalkingControllerDegraded, FootholdsStayOnTheGroundThroughATransientForceSensorFault) {
+  const auto run = [](const std::string& faults, test::LargestFootholdOffset& observer) {
+    const Scenario scenario = load_scenario(test::source_path("config/scenarios/lola-ft-frozen.yaml"),
+                                            {"duration=9", "sensors.faults=" + faults});
+    return run_scenario(scenario, make_run_config(scenario), "", &observer);
+  };
+  test::LargestFootholdOffset unfaulted;
+  ASSERT_FALSE(run("[]", unfaulted).summary["fell"].get<bool>());
   for (const char* t : {"4.8", "5.2", "5.6"}) {
-    const Scenario scenario =
-        load_scenario(test::source_path("config/scenarios/lola-ft-frozen.yaml"),
-                      {"duration=9", std::string("sensors.faults=[{t: ") + t + ", sensor: ft_right, value: freeze, duration: 0.5}]"});
     test::LargestFootholdOffset observer;
-    const ScenarioResult r = run_scenario(scenario, make_run_config(scenario), "", &observer);
+    const ScenarioResult r = run(std::string("[{t: ") + t + ", sensor: ft_right, value: freeze, duration: 0.5}]", observer);
     EXPECT_FALSE(r.summary["fell"].get<bool>()) << "fault at " << t;
     EXPECT_EQ(r.summary["sensors_recovered"].size(), 1u) << "fault at " << t;
-    EXPECT_LT(observer.largest, 0.01) << "fault at " << t;
+    EXPECT_LT(observer.largest, unfaulted.largest + 0.005) << "fault at " << t << ", without " << unfaulted.largest;
   }
 }
 
 // The joystick slammed between its extremes (config/scenarios/lola-joystick-slams.yaml): with the
 // command shaping's combined bound LOLA walks the timeline to its end and stands; without it (the
 // forward speed kept at 0.8 m/s while it turns and steps sideways at their limits) it falls
-// (measured: at 8.5 s; 8.5-10.3 s with sensor seeds 1-3).
+// (measured: at 8.5 s; 8.5-10.3 s with sensor seeds 1-3). On the long-step table (1 s steps at low
+// speed), where the bound was needed: the shipped table's shorter steps walk the slams without it
+// too (seeds 2000-2009 of experiments/joystick_slams.sh: 10 of 10 either way).
 TEST(WalkingControllerCommandShaping, JoystickSlamsAreWalkedOnlyWithTheCombinedBound) {
   for (const bool bound : {true, false}) {
-    const Scenario scenario =
-        load_scenario(test::source_path("config/scenarios/lola-joystick-slams.yaml"),
-                      bound ? std::vector<std::string>{} : std::vector<std::string>{"controller.limits.lateral_vx_share=1", "duration=12"});
+    std::vector<std::string> sets = {"controller.step_table=" + test::source_path("config/tables/lola-long-steps.csv")};
+    if (!bound) {
+      sets.push_back("controller.limits.lateral_vx_share=1");
+      sets.push_back("duration=12");
+    }
+    const Scenario scenario = load_scenario(test::source_path("config/scenarios/lola-joystick-slams.yaml"), sets);
     const ScenarioResult r = run_scenario(scenario, make_run_config(scenario), "");
     EXPECT_EQ(r.summary["fell"].get<bool>(), !bound) << r.summary.dump();
     if (bound) {
@@ -256,14 +267,15 @@ TEST(WalkingControllerCommandShaping, JoystickSlamsAreWalkedOnlyWithTheCombinedB
 // The hip strategy (control/upper_body_lean) on against off: LOLA at 0.3 m/s pushed sideways towards
 // the stance foot early in its single support (touchdown 3, a share 0.125 in: about 4.8 s), where
 // the centre of pressure is already near the sole's edge and the swing foot cannot land beyond the
-// stance foot (docs/stabilizer.md). Impulses 10-13 N·s, six sensor seeds each; measured: 17 of 24
-// walk with the lean, 6 of 24 without. (Before the attitude estimate's restart was averaged, 8-11
-// N·s walked 9 of 12 with the lean and 1 of 12 without; now 11 and 8.)
+// stance foot (docs/stabilizer.md). Impulses 18.5-20 N·s, six sensor seeds each; measured with the
+// shipped table's 0.4 s steps: 16 of 24 walk with the lean, 6 of 24 without (18 N·s: 6 of 6 both
+// ways; 21 N·s: none). With the earlier table's 1 s steps the same band lay at 10-13 N·s: 17 and 6
+// of 24 (docs/walking.md "Short steps").
 TEST(WalkingControllerHipStrategy, EarlySidewaysPushesAreCaughtMoreOftenWithTheLean) {
   int walked[2] = {0, 0};
   for (const bool lean : {false, true}) {
     for (int seed = 1; seed <= 6; ++seed) {
-      for (int impulse = 10; impulse <= 13; ++impulse) {
+      for (const double impulse : {18.5, 19.0, 19.5, 20.0}) {
         const Scenario scenario = load_scenario(
             test::source_path("config/scenarios/lola-push.yaml"),
             {"commands.1.vx=0.3", "seed=" + std::to_string(seed),
