@@ -250,10 +250,14 @@ StepTable generate_step_table(const RobotModel& model, const WalkingControllerPa
     row.speed = speeds[k];
     row.clearance = base.plan.step.clearance;
     if (row.speed == 0.0) {
-      // A zero command means standing (the FSM stops): no gait to choose. The row keeps the nominal
-      // parameters, which the stop step uses, and records the standing margin.
-      row.step_time = base.plan.step.step_time;
-      row.double_support_ratio = base.plan.step.double_support_ratio;
+      // A zero command means standing (the FSM stops): no gait to choose. The row gives the stop
+      // steps and, interpolated, the slowest walking: the nominal parameters, or with short steps
+      // preferred the slowest walking row's (long stop steps left the robot on one foot 0.64 s
+      // after a push and fell in place: docs/walking.md "Short steps"). It records that margin.
+      const bool follow_slowest = search.prefer_short_steps && k + 1 < n && feasible[k + 1];
+      row.step_time = follow_slowest ? rows[k + 1].step_time : base.plan.step.step_time;
+      row.double_support_ratio =
+          follow_slowest ? rows[k + 1].double_support_ratio : base.plan.step.double_support_ratio;
       row.zmp_margin = evaluate_step_candidate(model, base, 0.0, row.step_time, row.double_support_ratio, 1, 0,
                                                search.zmp_window).zmp_margin;
       feasible[k] = 1;

@@ -459,13 +459,16 @@ bool falls(const char* scenario, double x, bool adaptation, const std::string& t
   return run_scenario(s, make_run_config(s), "").run.fell;
 }
 
-// LOLA at 0.4 m/s onto a 2 cm step up and a 5° slope it is not told about: with the adaptation it
+// LOLA at 0.4 m/s onto a 2.5 cm step up and a 5° slope it is not told about: with the adaptation it
 // walks on; without it (force control alone, bounded to ±2 cm and returning to zero in swing) it
-// falls (measured: within 8–9 s of the start). The slope of 5°, the robustness issue's uphill goal:
+// falls (measured: within 6–9 s of the start). The slope of 5°, the robustness issue's uphill goal:
 // with the shipped table's 0.4 s steps LOLA walks 3° and 4° without the adaptation (3° fell with the
-// earlier table's 1 s steps).
+// earlier table's 1 s steps), and since the slowest walking takes 0.4 s steps too (the table's
+// zero row, 2026-11-30) the 2 cm step up at 1 m, met while the gait speeds up; 3 cm there falls
+// with and without (realistic sensors, 3 cm at 1.0–2.5 m: 3 of 6 walk, 0 of 6 with 0.8 s steps at
+// the start; docs/walking.md "Short steps").
 TEST(TerrainAdaptation, UnexpectedStepUpAndSlopeAreWalkedOnlyWithTheAdaptation) {
-  for (const auto& [scenario, terrain] : {std::pair<const char*, const char*>{"lola-terrain-step-up", "terrain.0.height=0.02"},
+  for (const auto& [scenario, terrain] : {std::pair<const char*, const char*>{"lola-terrain-step-up", "terrain.0.height=0.025"},
                                           {"lola-terrain-slope", "terrain.0.angle_deg=5"}}) {
     EXPECT_FALSE(falls(scenario, 1.0, true, terrain)) << scenario;
     EXPECT_TRUE(falls(scenario, 1.0, false, terrain)) << scenario;
