@@ -286,6 +286,29 @@ void TerrainAdaptation::measure_step(Foot& foot, int k, const PatternSample& s,
   newest_measured_ = k;
 }
 
+void TerrainAdaptation::level_standing_feet(double dt, const std::array<double, 2>& measured_ground) {
+  if (!params_.enabled || !params_.level_standing_feet) return;
+  Foot& left = feet_[0];
+  Foot& right = feet_[1];
+  if (left.phase != Phase::Stance || right.phase != Phase::Stance || !sole_lies_flat(left, 0) ||
+      !sole_lies_flat(right, 1) || !std::isfinite(measured_ground[0]) || !std::isfinite(measured_ground[1])) {
+    return;
+  }
+  const double measured_step = measured_ground[0] - measured_ground[1] - (left.planned_ground - right.planned_ground);
+  const double error = measured_step - (left.ground - right.ground);
+  const double beyond = std::copysign(std::max(0.0, std::abs(error) - params_.standing_level_dead_band), error);
+  const double limit = params_.standing_level_speed * dt;
+  const double change = std::clamp(beyond * dt / params_.standing_level_time, -limit, limit);
+  for (int k = 0; k < 2; ++k) {
+    Foot& foot = feet_[k];
+    const double share = k == 0 ? 0.5 * change : -0.5 * change;
+    foot.offset += share;
+    foot.rate += share / dt;
+    foot.ground += share;
+    foot.latched_height += share;
+  }
+}
+
 void TerrainAdaptation::shift_to_measured_level(double dt) {
   if (newest_measured_ < 0 || !feet_[newest_measured_].measured) return;
   const Foot& newest = feet_[newest_measured_];

@@ -56,6 +56,15 @@ struct TerrainAdaptationParams {
   bool measure_step_height = true;
   double step_height_max_lean = 0.035;
   double max_step = 0.05;         // [m] bound of a foothold's height against the other foot's
+  // Standing, the feet's heights against each other follow the measured step between them
+  // (level_standing_feet()), whatever the upper body's lean: the difference beyond
+  // `standing_level_dead_band` [m] with time constant `standing_level_time` [s], at most
+  // `standing_level_speed` [m/s]. (Taken up at the bound's speed whatever its size, the
+  // difference rocked LOLA from foot to foot: 170-380 N of load swinging between the feet.)
+  bool level_standing_feet = true;
+  double standing_level_dead_band = 0.003;
+  double standing_level_time = 0.5;
+  double standing_level_speed = 0.02;
   double com_follow_time = 0.3;   // [s] time constant of the CoM height following the footholds
   double cop_band = 0.04;         // [m] desired centre of pressure this far from the measured one at touchdown: the sole lacks support there
   double cop_filter_time = 0.03;  // [s] first-order filter of that distance
@@ -98,6 +107,16 @@ class TerrainAdaptation {
             const std::array<bool, 2>& trusted = {true, true},
             const std::array<Eigen::Vector2d, 2>& turn_above_command = {Eigen::Vector2d::Zero(), Eigen::Vector2d::Zero()},
             const std::array<double, 2>& measured_ground = {NAN, NAN});
+
+  // Standing (after step(), the walk at rest): the footholds' heights against each other move
+  // towards the measured step between them while both soles lie flat, each foot half of it, their
+  // mean unchanged (an extension). A foot that landed while the robot rolled towards it met the
+  // ground early and is latched centimetres high (or searched low); walking, its next step finds
+  // the ground again, but standing on it the robot leans by that difference and force control's
+  // bounded Δz cannot take it up: LOLA, pushed 12 N·s sideways in its stop step, stood 6-10°
+  // rolled on a foot latched 2.4 cm high and fell over in 2 s. `measured_ground` as for step(),
+  // but taken at any lean: the robot stands still and the attitude estimate does not lag.
+  void level_standing_feet(double dt, const std::array<double, 2>& measured_ground);
 
   // Offsets of the planned heights [m] and their rates [m/s]: per foot (by Side) and of the CoM.
   // A tilted foot's ankle moves with the tilt so that the edge it turned about stays in place.

@@ -204,21 +204,30 @@ void WalkingController::adapt_to_terrain(const SensorData& sensors) {
   // whose F/T sensor has failed finds no ground; the other goes on finding its own.
   const auto& m = stabilizer_.modification();
   const double compliance = 1.0 / stabilizer_.contact_stiffness();
+  const bool standing = plan_.state() == WalkingState::Standing && params_.terrain.level_standing_feet &&
+                        health().force_torque[0] && health().force_torque[1];
+  std::array<double, 2> ground = {NAN, NAN};
+  if (params_.terrain.measure_step_height || standing) {
+    ground = {measured_ground(Side::Left, sensors), measured_ground(Side::Right, sensors)};
+  }
+  // The lean from the commanded orientation: cos of its angle is the commanded vertical's z in the
+  // world. Beyond step_height_max_lean the steps are not measured: in larger motions the attitude
+  // estimate lags.
+  const Eigen::Matrix3d lean =
+      sensors.imu_orientation.toRotationMatrix() * rmrc_.task().frames().rotation[model_.upper_body()].transpose();
+  const bool measure_steps =
+      params_.terrain.measure_step_height && lean(2, 2) >= std::cos(params_.terrain.step_height_max_lean);
   terrain_.step(params_.rmrc.dt, plan_.sample(), sensors.foot_wrench, stabilizer_.desired(),
                 {m[0].offset[0] + compliance * std::max(0.0, sensors.foot_wrench[0].force.z()),
                  m[1].offset[0] + compliance * std::max(0.0, sensors.foot_wrench[1].force.z())},
                 health().force_torque, {m[0].offset.tail<2>(), m[1].offset.tail<2>()},
-                params_.terrain.measure_step_height
-                    ? std::array<double, 2>{measured_ground(Side::Left, sensors), measured_ground(Side::Right, sensors)}
-                    : std::array<double, 2>{NAN, NAN});
+                measure_steps ? ground : std::array<double, 2>{NAN, NAN});
+  if (standing) terrain_.level_standing_feet(params_.rmrc.dt, ground);
 }
 
 double WalkingController::measured_ground(Side side, const SensorData& sensors) const {
   if (!health().imu || health().encoder_failed.any()) return NAN;
   const Eigen::Matrix3d upper_body = sensors.imu_orientation.toRotationMatrix();
-  // The lean from the commanded orientation: cos of its angle is the commanded vertical's z in the world.
-  const Eigen::Matrix3d lean = upper_body * rmrc_.task().frames().rotation[model_.upper_body()].transpose();
-  if (lean(2, 2) < std::cos(params_.terrain.step_height_max_lean)) return NAN;
   // The encoders' kinematics have the base at the origin, unrotated; the measured upper-body
   // orientation turns the whole chain (as in the CoM estimate).
   const BodyFrames& measured = encoders_.frames();

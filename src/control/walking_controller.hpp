@@ -87,8 +87,7 @@ class WalkingController final : public Controller {
   // The height of the ground under a foot's sole against the pelvis, vertical in the world: the
   // encoders' leg kinematics turned by the estimated upper-body orientation, plus the sole's
   // deflection there under its measured wrench (eq. (11)'s contact model) [m]. NaN while the IMU
-  // or an encoder has failed, or while the upper body leans more than the terrain adaptation's
-  // step_height_max_lean from its command.
+  // or an encoder has failed.
   double measured_ground(Side side, const SensorData& sensors) const;
   // eqs. (10)–(20) with the state estimate: the feet's modification Δx_λ of eq. (21)'s reference;
   // and the upper body's lean (the hip strategy, control/upper_body_lean).

@@ -163,6 +163,43 @@ TEST(TerrainAdaptation, TheMeasuredStepTakesTheLaterHalfOfTheLoadTransfer) {
   }
 }
 
+// The left foot latched 2 cm high (the robot rolled towards it as it landed), on flat ground:
+// standing, the feet's heights against each other follow the measured step between them (flat) to
+// within the dead band, each foot half of the way, their mean kept. Not while a sole is on its
+// edge, nor switched off.
+TEST(TerrainAdaptation, StandingTheFeetTakeTheMeasuredStepBetweenThem) {
+  const RobotModel model = test::load_model("lola");
+  for (const int variant : {0, 1, 2}) {  // levelled; the right sole on its toe; switched off
+    TerrainAdaptationParams params;
+    params.measure_step_height = false;  // the latched step stays as the walk left it
+    params.level_standing_feet = variant != 2;
+    TerrainAdaptation terrain(model, params);
+    LeftFootDescending left;
+    left.descend(terrain, 100, -10.0, 500.0);
+    left.descend(terrain, 100, 250.0, 300.0);  // meets the ground 2 cm above the plan's
+    left.sample.feet[0].in_contact = true;
+    left.sample.feet[0].position.z() = 0.0;
+    std::array<Wrench, 2> standing = loads(250.0, 250.0);
+    if (variant == 1) standing[1].torque.y() = -model.foot(Side::Right).sole_x_max * 250.0;  // T_y = −x_CoP F_z
+    for (int i = 0; i < 100; ++i) terrain.step(kDt, left.sample, standing);
+    const double latched = terrain.ground_height(0) - terrain.ground_height(1);
+    ASSERT_NEAR(latched, 0.02, 2e-3);
+    const double mean = 0.5 * (terrain.foot_offset(0) + terrain.foot_offset(1));
+    for (int i = 0; i < 3000; ++i) {
+      terrain.step(kDt, left.sample, standing);
+      terrain.level_standing_feet(kDt, {-0.9, -0.9});
+    }
+    const double now = terrain.ground_height(0) - terrain.ground_height(1);
+    if (variant == 0) {
+      EXPECT_LT(std::abs(now), params.standing_level_dead_band + 1e-4);
+      EXPECT_GT(std::abs(now), params.standing_level_dead_band - 1e-4) << "the dead band is left";
+    } else {
+      EXPECT_NEAR(now, latched, 1e-9) << variant;
+    }
+    EXPECT_NEAR(0.5 * (terrain.foot_offset(0) + terrain.foot_offset(1)), mean, 1e-9) << variant;
+  }
+}
+
 // A foot that touches the ground on its way down but has lost it again by the planned touchdown
 // (its toe brushed the ground) is not standing where it touched: it searches like a late foot
 // instead of taking the touch for its foothold.
@@ -447,6 +484,29 @@ TEST(TerrainAdaptation, TheMeasuredStepsKeepTheFootholdsAtTheGround) {
   }
   EXPECT_LT(largest[0], 0.025);
   EXPECT_GT(largest[1], 2.0 * largest[0]);
+}
+
+// A run of LOLA's user campaign (seed 89, run 796, values rounded): a 15 N·s push from the front
+// left in the last steps of a stop; the robot stands on feet latched 9 mm apart, rolled towards
+// the low one, and the hip strategy's lean (10°) keeps the upper body 14° off vertical. With the
+// standing feet levelled the difference shrinks to the 3 mm dead band and the tilt to 2° within
+// 2.5 s, and the walk that is commanded next starts upright; without, the tilt grows to 19° by
+// the restart and the robot falls (measured: at 10.5 s).
+TEST(TerrainAdaptation, AStopPushedSidewaysWalksOnOnlyWithTheStandingFeetLevelled) {
+  for (const bool level : {true, false}) {
+    const Scenario s = load_scenario(
+        test::source_path("config/scenarios/lola-walk.yaml"),
+        {"duration=12", "seed=1813263936", "sensors.noise=false", "sensors.delay_cycles=0",
+         "model_error.upper_body_mass_scale=1.093", "model_error.upper_body_com_offset=[-0.0166, 0.004, 0]",
+         "commands=[{t: 0, vx: 0}, {t: 1, vx: 0.511, vy: 0.042, omega: -0.089}, {t: 3.49, vx: 0.273, vy: -0.041, "
+         "omega: 0.141}, {t: 5.61, stop: true}, {t: 9.25, vx: 0.588, vy: -0.033, omega: 0.105}, {t: 10.86, stop: true}]",
+         "disturbances=[{type: push, at: {touchdown: 11, phase: 0.385}, direction_deg: 58.5, impulse_Ns: 15.0, "
+         "duration: 0.1}]",
+         "terrain=[{type: step, x: 2.515, height: -0.0172}]",
+         std::string("controller.terrain_adaptation.level_standing_feet=") + (level ? "true" : "false")});
+    const ScenarioResult result = run_scenario(s, make_run_config(s), "");
+    EXPECT_EQ(result.run.fell, !level) << level;
+  }
 }
 
 // With ideal sensors: the adaptation's own effect. (With the robot files' realistic sensor errors
