@@ -114,7 +114,7 @@ class TerrainAdaptation {
   // ground early and is latched centimetres high (or searched low); walking, its next step finds
   // the ground again, but standing on it the robot leans by that difference and force control's
   // bounded Δz cannot take it up: LOLA, pushed 12 N·s sideways in its stop step, stood 6-10°
-  // rolled on a foot latched 2.4 cm high and fell over in 2 s. `measured_ground` as for step(),
+  // rolled on a foot latched 2.4 cm high and fell over 3.6 s later. `measured_ground` as for step(),
   // but taken at any lean: the robot stands still and the attitude estimate does not lag.
   void level_standing_feet(double dt, const std::array<double, 2>& measured_ground);
 
