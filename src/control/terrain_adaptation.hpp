@@ -56,7 +56,8 @@ struct TerrainAdaptationParams {
   bool measure_step_height = true;
   double step_height_max_lean = 0.035;
   double max_step = 0.05;         // [m] bound of a foothold's height against the other foot's
-  // Standing, the feet's heights against each other follow the measured step between them
+  // Standing (after a stop or at the end of a safe stop), the feet's heights against each other
+  // follow the measured step between them
   // (level_standing_feet()), whatever the upper body's lean: the difference beyond
   // `standing_level_dead_band` [m] with time constant `standing_level_time` [s], at most
   // `standing_level_speed` [m/s]. (Taken up at the bound's speed whatever its size, the

@@ -204,7 +204,9 @@ void WalkingController::adapt_to_terrain(const SensorData& sensors) {
   // whose F/T sensor has failed finds no ground; the other goes on finding its own.
   const auto& m = stabilizer_.modification();
   const double compliance = 1.0 / stabilizer_.contact_stiffness();
-  const bool standing = plan_.state() == WalkingState::Standing && params_.terrain.level_standing_feet &&
+  // Standing also at the end of a safe stop: a foothold latched centimetres off during its steps
+  // tilts the robot standing on one foot (JVRC-1 after a transient F/T fault).
+  const bool standing = plan_.standing() && params_.terrain.level_standing_feet &&
                         health().force_torque[0] && health().force_torque[1];
   std::array<double, 2> ground = {NAN, NAN};
   if (params_.terrain.measure_step_height || standing) {

@@ -52,6 +52,7 @@ class WalkingPlan {
   void enter_fallen() { fsm_.enter_fallen(); }
 
   WalkingState state() const { return fsm_.state(); }
+  bool standing() const { return fsm_.standing(); }  // WalkingStateMachine::standing()
   const PatternSample& sample() const { return sample_; }
   bool command_saturated() const { return command_saturated_; }  // in the last advance()
   // The gait's speed and turn rate as planned at the last replanning (the command shaped).

@@ -26,6 +26,12 @@ enum class StepDecision {
 class WalkingStateMachine {
  public:
   WalkingState state() const { return state_; }
+  // Standing still with no step planned: after a stop, or once a safe stop has put the feet side by
+  // side.
+  bool standing() const {
+    return state_ == WalkingState::Standing ||
+           (state_ == WalkingState::SafeStop && stop_progress_ == WalkingState::Standing);
+  }
 
   // Called every cycle: `wants_to_walk` = nonzero command without stop, or a gait too fast to stop
   // in one step (in safe_stop only the latter); `at_touchdown` = the current plan's next touchdown

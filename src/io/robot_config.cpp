@@ -276,7 +276,7 @@ const ParameterTable<TerrainAdaptationParams> kTerrainAdaptationParameters = {
     {"max_step", &TerrainAdaptationParams::max_step, "m", kPositive,
      "bound of a foothold's height against the other foot's"},
     {"level_standing_feet", &TerrainAdaptationParams::level_standing_feet, "", {},
-     "standing, the feet's heights against each other follow the measured step between them (at any lean)"},
+     "standing (after a stop or a safe stop), the feet's heights against each other follow the measured step between them (at any lean)"},
     {"standing_level_dead_band", &TerrainAdaptationParams::standing_level_dead_band, "m", kNonNegative,
      "... the difference beyond this"},
     {"standing_level_time", &TerrainAdaptationParams::standing_level_time, "s", kPositive,

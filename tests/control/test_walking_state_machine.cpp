@@ -20,6 +20,7 @@ TEST(WalkingStateMachine, StartWalkStopStand) {
   EXPECT_EQ(fsm.update(true, true), StepDecision::Stand) << "a stop completes before walking again";
   EXPECT_EQ(fsm.state(), WalkingState::Standing);
   EXPECT_STREQ(name_of(fsm.state()), "standing");
+  EXPECT_TRUE(fsm.standing());
 }
 
 TEST(WalkingStateMachine, SafeStopFinishesTheStepStopsAndStaysStopped) {
@@ -30,8 +31,11 @@ TEST(WalkingStateMachine, SafeStopFinishesTheStepStopsAndStaysStopped) {
   EXPECT_EQ(fsm.state(), WalkingState::SafeStop);
   EXPECT_STREQ(name_of(fsm.state()), "safe_stop");
   EXPECT_EQ(fsm.update(false, false), StepDecision::None);
+  EXPECT_FALSE(fsm.standing());
   EXPECT_EQ(fsm.update(false, true), StepDecision::StopStep);
+  EXPECT_FALSE(fsm.standing()) << "the stop step is under way";
   EXPECT_EQ(fsm.update(true, true), StepDecision::Stand);
+  EXPECT_TRUE(fsm.standing()) << "the feet are side by side: it stands, in safe_stop";
   EXPECT_EQ(fsm.update(true, true), StepDecision::None);
   EXPECT_EQ(fsm.state(), WalkingState::SafeStop);
 }
@@ -55,6 +59,7 @@ TEST(WalkingStateMachine, SafeStopWhileStandingKeepsStanding) {
   fsm.enter_safe_stop();
   EXPECT_EQ(fsm.update(true, true), StepDecision::None);
   EXPECT_EQ(fsm.state(), WalkingState::SafeStop);
+  EXPECT_TRUE(fsm.standing());
 }
 
 }  // namespace
