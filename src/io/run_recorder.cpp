@@ -10,8 +10,6 @@ namespace biped {
 namespace {
 
 constexpr double kRadToDeg = 180.0 / M_PI;
-constexpr double kContactOnN = 50.0;   // touchdown: ground-truth normal force rises above this
-constexpr double kContactOffN = 10.0;  // lift-off: falls below this
 
 // A log.csv row built with std::to_chars, which with a precision prints exactly as printf's %.Nf and
 // %.Ng do, at a fraction of snprintf's cost (a row has about 100 numbers).
@@ -104,16 +102,7 @@ void RunRecorder::record(const Simulation& sim, const SensorData& sensors, const
   }
   command_saturated_ = command_saturated_ || status.command_saturated;
   // Steps end at the fall: a fallen robot's feet bouncing on the ground are not steps.
-  for (Side side : kSides) {
-    const int k = index_of(side);
-    const double force = sim.foot_contact_force(side);
-    if (!in_contact_[k] && force > kContactOnN) {
-      in_contact_[k] = true;
-      if (!fallen) ++touchdowns_;
-    } else if (in_contact_[k] && force < kContactOffN) {
-      in_contact_[k] = false;
-    }
-  }
+  if (!fallen) touchdowns_ = sim.gait_events().touchdowns();
   if (!csv_) return;
 
   // The CoM of the whole robot is the subtree CoM of the world body.

@@ -43,7 +43,6 @@ class RunRecorder final : public RunObserver {
   double final_yaw_ = 0.0;
   double max_tilt_ = 0.0;
   bool started_ = false;
-  bool in_contact_[2] = {true, true};
   int touchdowns_ = 0;
   bool fault_seen_ = false, fault_after_fall_ = false;
   double fault_time_ = 0.0;

@@ -1,5 +1,6 @@
 #include "sim/disturbances.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -10,21 +11,26 @@ namespace biped {
 void GaitEvents::reset() { *this = GaitEvents{}; }
 
 void GaitEvents::update(double t, const std::array<double, 2>& normal_force) {
+  double event_time = t;
   for (int k = 0; k < 2; ++k) {
-    if (!in_contact_[k] && normal_force[k] > kTouchdownN) {
-      in_contact_[k] = true;
-      ++touchdowns_;
-    } else if (in_contact_[k] && normal_force[k] < kLiftoffN) {
-      in_contact_[k] = false;
-    }
+    // A pending change starts at its threshold and is called off only by the opposite one.
+    const bool starts = in_contact_[k] ? normal_force[k] < kLiftoffN : normal_force[k] > kTouchdownN;
+    const bool called_off = in_contact_[k] ? normal_force[k] > kTouchdownN : normal_force[k] < kLiftoffN;
+    if (called_off) change_since_[k] = -1.0;
+    if (starts && change_since_[k] < 0.0) change_since_[k] = t;
+    if (change_since_[k] < 0.0 || t - change_since_[k] < kConfirmS - 1e-9) continue;
+    in_contact_[k] = !in_contact_[k];
+    if (in_contact_[k]) ++touchdowns_;
+    event_time = change_since_[k];
+    change_since_[k] = -1.0;
   }
   const bool single = in_contact_[0] != in_contact_[1];
   if (single && !single_support_) {
-    support_start_ = t;
+    support_start_ = event_time;
     ++supports_started_;
     touchdowns_at_support_start_ = touchdowns_;
   } else if (!single && single_support_) {
-    last_duration_ = t - support_start_;
+    last_duration_ = event_time - support_start_;
   }
   single_support_ = single;
 }
@@ -57,7 +63,7 @@ void PushSchedule::apply(mjData* d, const GaitEvents& gait) {
                                   (g.touchdown >= 0 ? gait.touchdowns_before_current_support() >= g.touchdown
                                                     : gait.single_support_start() >= g.after_time);
         if (!this_support) continue;
-        start = gait.single_support_start() + g.phase * gait.last_single_support_duration();
+        start = std::max(t, gait.single_support_start() + g.phase * gait.last_single_support_duration());
       }
       if (t < start - 1e-9) continue;
       start_[k] = start;

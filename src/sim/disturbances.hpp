@@ -1,8 +1,9 @@
 #pragma once
 // Pushes on the simulated robot: a force on any body, at any point, in any direction, timed by the
 // clock or by gait events. Gait events come from the ground truth of the sole contacts (a touchdown
-// is the normal force rising above 50 N, a lift-off falling below 10 N), so a push lands at the
-// same moment of the gait whatever the controller plans, and needs no dry run.
+// is the normal force rising above 50 N, a lift-off falling below 10 N, each counted once it has
+// held for 10 ms), so a push lands at the same moment of the gait whatever the controller plans,
+// and needs no dry run.
 #include <mujoco/mujoco.h>
 
 #include <Eigen/Core>
@@ -18,7 +19,8 @@ namespace biped {
 // A moment of the gait: `phase` (0..1) through a single support, measured against the duration of
 // the single support before it. The single support is the one after the `touchdown`-th touchdown
 // (counted from the start of the run), or, with `after_time` ≥ 0, the first one that starts after
-// that time.
+// that time. A moment that has passed when its single support is confirmed (a phase within the
+// first 10 ms) starts the push at once.
 struct GaitMoment {
   int touchdown = -1;
   double after_time = -1.0;  // [s]
@@ -40,10 +42,14 @@ struct Push {
 };
 
 // Touchdowns and single supports of the ground truth, from the feet's normal contact forces.
+// A change of a foot's contact counts once it has held for kConfirmS (the force has not crossed
+// back over the other threshold) and is dated to its start: a foot that bounces off the ground for
+// a few milliseconds at touchdown or lift-off makes no touchdown and no single support of its own.
 class GaitEvents {
  public:
   static constexpr double kTouchdownN = 50.0;
   static constexpr double kLiftoffN = 10.0;
+  static constexpr double kConfirmS = 0.01;
   void reset();
   // One physics step at time t with each foot's normal force [N].
   void update(double t, const std::array<double, 2>& normal_force);
@@ -57,6 +63,7 @@ class GaitEvents {
 
  private:
   std::array<bool, 2> in_contact_{true, true};
+  std::array<double, 2> change_since_{-1.0, -1.0};  // [s] when a pending change began; < 0: none
   int touchdowns_ = 0;
   bool single_support_ = false;
   double support_start_ = 0.0, last_duration_ = 0.0;
