@@ -17,11 +17,20 @@ void StepAdaptation::idle() {
   rate_.setZero();
 }
 
-double StepAdaptation::max_next_step_time() const {
-  if (!params_.enabled || params_.quick_step_time <= 0.0 || !dcm_error_.allFinite()) return 0.0;
+double StepAdaptation::error_beyond_dead_band() const {
+  if (!dcm_error_.allFinite()) return NAN;
   const Eigen::Vector2d beyond(std::max(0.0, std::abs(dcm_error_.x()) - params_.dead_band_forward),
                                std::max(0.0, std::abs(dcm_error_.y()) - params_.dead_band_sideways));
-  return beyond.norm() > params_.quick_step_error ? params_.quick_step_time : 0.0;
+  return beyond.norm();
+}
+
+double StepAdaptation::max_next_step_time() const {
+  if (!params_.enabled || params_.quick_step_time <= 0.0) return 0.0;
+  return error_beyond_dead_band() > params_.quick_step_error ? params_.quick_step_time : 0.0;
+}
+
+bool StepAdaptation::unbalanced() const {
+  return params_.enabled && params_.balance_steps > 0 && error_beyond_dead_band() > params_.balance_error;
 }
 
 void StepAdaptation::update(double dt, const StepAdaptationInput& in) {

@@ -47,6 +47,12 @@ struct StepAdaptationParams {
   // LOLA's push map nor its training campaign measurably (docs/stabilizer.md).
   double quick_step_time = 0.0;
   double quick_step_error = 0.05;
+  // Balance before a stop: a touchdown that would end a walk (a stop, the safe stop's last step)
+  // while the DCM error beyond the dead band exceeds `balance_error` [m] plans more steps instead
+  // (with a zero command, the adaptation moving their landings), at most `balance_steps` in a row
+  // (0: off), so that the robot does not come to stand with its DCM outside its feet.
+  int balance_steps = 4;
+  double balance_error = 0.02;
 };
 
 // What one cycle of the adaptation reads, all in the heading frame (x forward, y left) relative to
@@ -84,8 +90,13 @@ class StepAdaptation {
   // The longest step time the steps planned at the coming touchdown may have [s] (0: the table's):
   // `quick_step_time` while the DCM error beyond the dead band exceeds `quick_step_error`.
   double max_next_step_time() const;
+  // The last update's DCM error is too large to stand: more steps are wanted (`balance_error`).
+  bool unbalanced() const;
 
  private:
+  // |DCM error beyond the dead band| of the last update [m]; NaN when the error is not finite.
+  double error_beyond_dead_band() const;
+
   StepAdaptationParams params_;
   Eigen::Vector2d shift_ = Eigen::Vector2d::Zero(), rate_ = Eigen::Vector2d::Zero();
   Eigen::Vector2d dcm_error_ = Eigen::Vector2d::Zero();

@@ -167,6 +167,7 @@ void WalkingController::adapt_steps(const SensorData& sensors) {
     step_adaptation_.idle();
     plan_.shift_landing(Eigen::Vector2d::Zero(), Eigen::Vector2d::Zero());
     plan_.limit_next_step_time(0.0);
+    plan_.keep_stepping(false, params_.step_adaptation.balance_steps);
     return;
   }
   const FootReference& stance = s.feet[1 - swing];
@@ -195,6 +196,7 @@ void WalkingController::adapt_steps(const SensorData& sensors) {
   const Eigen::Matrix2d to_world = to_heading.transpose();
   plan_.shift_landing(to_world * step_adaptation_.shift(), to_world * step_adaptation_.shift_rate());
   plan_.limit_next_step_time(step_adaptation_.max_next_step_time());
+  plan_.keep_stepping(step_adaptation_.unbalanced(), params_.step_adaptation.balance_steps);
 }
 
 void WalkingController::adapt_to_terrain(const SensorData& sensors) {

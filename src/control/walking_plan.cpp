@@ -30,6 +30,8 @@ void WalkingPlan::reset(const std::array<Footstep, 2>& feet, const Eigen::Vector
   landing_shift_rate_.setZero();
   measured_valid_ = false;
   max_next_step_time_ = 0.0;
+  unbalanced_ = false;
+  balance_steps_ = 0;
   replans_from_measured_ = 0;
   step_ = params_.step;
   step_.com_height = com.z();
@@ -64,7 +66,16 @@ const PatternSample& WalkingPlan::advance(double t, const WalkCommand& command) 
     landing_shift_.setZero();
     landing_shift_rate_.setZero();
   }
-  replan(t, fsm_.update(wants_to_walk, at_touchdown), commanded ? v : VelocityCommand{});
+  const bool must_step = unbalanced_ && balance_steps_ < max_balance_steps_;
+  const StepDecision decision = fsm_.update(wants_to_walk, at_touchdown, must_step);
+  // Counted until the robot walks on by command or stands: the stop step after the last of them
+  // does not start a new count.
+  if (decision == StepDecision::Continue && !wants_to_walk) {
+    ++balance_steps_;
+  } else if (decision == StepDecision::Continue || decision == StepDecision::Stand) {
+    balance_steps_ = 0;
+  }
+  replan(t, decision, commanded ? v : VelocityCommand{});
   pattern_.sample(t, sample_);
   for (FootReference& foot : sample_.feet) {
     if (foot.in_contact) continue;

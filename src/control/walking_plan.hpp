@@ -42,6 +42,13 @@ class WalkingPlan {
   // Step timing (step adaptation): the steps planned at the next touchdown last at most
   // `max_step_time` [s] each (0: the table's step time). Set every cycle.
   void limit_next_step_time(double max_step_time) { max_next_step_time_ = max_step_time; }
+  // Balance before a stop (step adaptation): while `unbalanced`, a touchdown that would stop or
+  // stand plans more steps with a zero command instead, at most `max_steps` such touchdowns in a
+  // row. Set every cycle.
+  void keep_stepping(bool unbalanced, int max_steps) {
+    unbalanced_ = unbalanced;
+    max_balance_steps_ = max_steps;
+  }
   // The robot's CoM as the state estimate has it (controller frame) and its velocity: the next
   // replanning at a touchdown starts from it instead of the plan's own state when they differ by
   // more than `threshold` [m] (position plus velocity / ω₀). `valid` false: from the plan's state.
@@ -58,6 +65,8 @@ class WalkingPlan {
   // The gait's speed and turn rate as planned at the last replanning (the command shaped).
   VelocityCommand planned_velocity() const { return {planned_vx_, planned_vy_, planned_omega_}; }
   int steps_completed() const { return steps_completed_; }
+  // Steps planned in a row only to keep the balance (keep_stepping).
+  int balance_steps() const { return balance_steps_; }
   int replans_from_measured() const { return replans_from_measured_; }
   int num_planned_steps() const { return num_planned_; }
   const Footstep& planned_step(int i) const { return planned_[i]; }
@@ -84,6 +93,9 @@ class WalkingPlan {
   Eigen::Vector2d measured_com_ = Eigen::Vector2d::Zero(), measured_com_velocity_ = Eigen::Vector2d::Zero();
   double replan_threshold_ = 0.0;
   double max_next_step_time_ = 0.0;
+  bool unbalanced_ = false;
+  int max_balance_steps_ = 0;
+  int balance_steps_ = 0;
   bool measured_valid_ = false;
   int replans_from_measured_ = 0;
   bool command_saturated_ = false;

@@ -14,7 +14,7 @@ const char* name_of(WalkingState state) {
   return "unknown";
 }
 
-StepDecision WalkingStateMachine::update(bool wants_to_walk, bool at_touchdown) {
+StepDecision WalkingStateMachine::update(bool wants_to_walk, bool at_touchdown, bool must_step) {
   switch (state_) {
     case WalkingState::Standing:
       if (!wants_to_walk) return StepDecision::None;
@@ -23,7 +23,7 @@ StepDecision WalkingStateMachine::update(bool wants_to_walk, bool at_touchdown) 
     case WalkingState::Starting:
     case WalkingState::Walking:
       if (!at_touchdown) return StepDecision::None;
-      if (wants_to_walk) {
+      if (wants_to_walk || must_step) {
         state_ = WalkingState::Walking;
         return StepDecision::Continue;
       }
@@ -31,16 +31,25 @@ StepDecision WalkingStateMachine::update(bool wants_to_walk, bool at_touchdown) 
       return StepDecision::StopStep;
     case WalkingState::Stopping:
       if (!at_touchdown) return StepDecision::None;
+      if (must_step) {
+        state_ = WalkingState::Walking;
+        return StepDecision::Continue;
+      }
       state_ = WalkingState::Standing;
       return StepDecision::Stand;
     case WalkingState::SafeStop:
       if (!at_touchdown) return StepDecision::None;
       if (stop_progress_ == WalkingState::Starting || stop_progress_ == WalkingState::Walking) {
-        if (wants_to_walk) return StepDecision::Continue;  // too fast to stop in one step: slow down
+        // Too fast to stop in one step: slow down; or not balanced enough to stand.
+        if (wants_to_walk || must_step) return StepDecision::Continue;
         stop_progress_ = WalkingState::Stopping;
         return StepDecision::StopStep;
       }
       if (stop_progress_ == WalkingState::Stopping) {
+        if (must_step) {
+          stop_progress_ = WalkingState::Walking;
+          return StepDecision::Continue;
+        }
         stop_progress_ = WalkingState::Standing;
         return StepDecision::Stand;
       }

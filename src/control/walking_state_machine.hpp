@@ -2,6 +2,8 @@
 // The walking state machine (Fig. 3's FSM): coordinates the planning and control modules.
 //   standing ──(walk command)──► starting ──(first touchdown)──► walking
 //   walking ──(stop or zero command at a touchdown)──► stopping ──(feet side by side)──► standing
+//   A touchdown at which the robot must step on to keep its balance (`must_step`) plans more steps
+//   instead of a stop step or standing (walking, or the safe stop's walking part).
 //   any ──(sensor fault)──► safe_stop: the walk command is ignored; a step under way is finished,
 //   steps that slow down follow while the gait is too fast to stop in one step (as a normal stop
 //   does), one more step puts the feet side by side, and the robot stands (the pattern and
@@ -35,8 +37,8 @@ class WalkingStateMachine {
 
   // Called every cycle: `wants_to_walk` = nonzero command without stop, or a gait too fast to stop
   // in one step (in safe_stop only the latter); `at_touchdown` = the current plan's next touchdown
-  // has been reached.
-  StepDecision update(bool wants_to_walk, bool at_touchdown);
+  // has been reached; `must_step` = the robot is not balanced enough to stand (step adaptation).
+  StepDecision update(bool wants_to_walk, bool at_touchdown, bool must_step = false);
   void enter_safe_stop();
   void enter_fallen() { state_ = WalkingState::Fallen; }
 

@@ -324,6 +324,10 @@ const ParameterTable<StepAdaptationParams> kStepAdaptationParameters = {
      "step timing: the steps planned at a touchdown after a large DCM error last at most this (0: off)"},
     {"quick_step_error", &StepAdaptationParams::quick_step_error, "m", kNonNegative,
      "step timing: DCM error beyond the dead band at the end of a swing that makes the next steps quick"},
+    {"balance_steps", &StepAdaptationParams::balance_steps, "", kNonNegative,
+     "balance before a stop: at most this many more steps while the DCM error is too large to stand (0: off)"},
+    {"balance_error", &StepAdaptationParams::balance_error, "m", kNonNegative,
+     "balance before a stop: DCM error beyond the dead band at a touchdown above which the robot steps on"},
 };
 
 const ParameterTable<UpperBodyLeanParams> kUpperBodyLeanParameters = {

@@ -221,5 +221,32 @@ TEST(StepAdaptation, QuickStepsOnlyForAnErrorBeyondTheDeadBandAndTheThreshold) {
   EXPECT_EQ(next_step_time(disabled, {0.0, -0.2}), 0.0);
 }
 
+// Balance before a stop: unbalanced only for an error beyond the dead band by more than
+// balance_error; never when switched off (balance_steps 0, or the adaptation off) or not finite.
+TEST(StepAdaptation, UnbalancedOnlyForAnErrorBeyondTheDeadBandAndTheBalanceError) {
+  StepAdaptationParams params;  // the defaults: dead bands 0.06 / 0.04 m, balance_error 0.02 m
+  StepAdaptationInput in = mid_swing();
+  const auto unbalanced = [&](const StepAdaptationParams& p, Eigen::Vector2d error) {
+    StepAdaptation adaptation{p};
+    in.measured_com = error;
+    adaptation.update(kDt, in);
+    return adaptation.unbalanced();
+  };
+  EXPECT_FALSE(unbalanced(params, {0.0, 0.0}));
+  EXPECT_FALSE(unbalanced(params, {0.075, 0.0}));   // 0.015 beyond the band
+  EXPECT_FALSE(unbalanced(params, {0.0, -0.055}));  // 0.015 beyond
+  EXPECT_TRUE(unbalanced(params, {0.085, 0.0}));
+  EXPECT_TRUE(unbalanced(params, {-0.085, 0.0}));
+  EXPECT_TRUE(unbalanced(params, {0.0, 0.065}));
+  EXPECT_TRUE(unbalanced(params, {0.075, -0.055}));  // (0.015, 0.015): 0.021
+  EXPECT_FALSE(unbalanced(params, {NAN, 0.0}));
+  StepAdaptationParams off = params;
+  off.balance_steps = 0;
+  EXPECT_FALSE(unbalanced(off, {0.3, 0.0}));
+  StepAdaptationParams disabled = params;
+  disabled.enabled = false;
+  EXPECT_FALSE(unbalanced(disabled, {0.3, 0.0}));
+}
+
 }  // namespace
 }  // namespace biped

@@ -491,7 +491,8 @@ TEST(TerrainAdaptation, TheMeasuredStepsKeepTheFootholdsAtTheGround) {
 // the low one, and the hip strategy's lean (10°) keeps the upper body 14° off vertical. With the
 // standing feet levelled the difference shrinks to the 3 mm dead band and the tilt to 2° within
 // 2.5 s, and the walk that is commanded next starts upright; without, the tilt grows to 19° by
-// the restart and the robot falls (measured: at 10.5 s).
+// the restart and the robot falls (measured: at 10.5 s). Without the balance steps before a stop:
+// with them the pushed stop steps on, stands balanced and walks either way.
 TEST(TerrainAdaptation, AStopPushedSidewaysWalksOnOnlyWithTheStandingFeetLevelled) {
   for (const bool level : {true, false}) {
     const Scenario s = load_scenario(
@@ -502,7 +503,7 @@ TEST(TerrainAdaptation, AStopPushedSidewaysWalksOnOnlyWithTheStandingFeetLevelle
          "omega: 0.141}, {t: 5.61, stop: true}, {t: 9.25, vx: 0.588, vy: -0.033, omega: 0.105}, {t: 10.86, stop: true}]",
          "disturbances=[{type: push, at: {touchdown: 11, phase: 0.385}, direction_deg: 58.5, impulse_Ns: 15.0, "
          "duration: 0.1}]",
-         "terrain=[{type: step, x: 2.515, height: -0.0172}]",
+         "terrain=[{type: step, x: 2.515, height: -0.0172}]", "controller.step_adaptation.balance_steps=0",
          std::string("controller.terrain_adaptation.level_standing_feet=") + (level ? "true" : "false")});
     const ScenarioResult result = run_scenario(s, make_run_config(s), "");
     EXPECT_EQ(result.run.fell, !level) << level;

@@ -293,6 +293,33 @@ TEST(WalkingPlan, StopPutsTheFeetSideBySideAndStands) {
   EXPECT_EQ(f.plan.steps_completed(), steps);
 }
 
+// Balance before a stop: while the robot is unbalanced, the touchdowns that would stop or stand
+// plan more steps instead, at most `max_steps` in a row, then the stop completes as it would have;
+// once balanced, the stop completes at once.
+TEST(WalkingPlan, UnbalancedStopStepsOnAtMostMaxStepsThenStands) {
+  const int max_steps = 3;
+  // Touchdowns from the stop command on, unbalanced until `balanced_after` of them (-1: never).
+  const auto touchdowns_to_stand = [&](bool keep_stepping, int balanced_after) {
+    PlanFixture f;
+    f.run(5.0, walk(0.3));
+    EXPECT_EQ(f.plan.state(), WalkingState::Walking);
+    const std::size_t before = f.touchdowns.size();
+    f.plan.keep_stepping(keep_stepping, max_steps);
+    f.run(15.0, stop(), [&] {
+      if (balanced_after >= 0 && f.touchdowns.size() >= before + balanced_after) f.plan.keep_stepping(false, max_steps);
+    });
+    EXPECT_EQ(f.plan.state(), WalkingState::Standing);
+    EXPECT_EQ(f.plan.num_planned_steps(), 0);
+    expect_side_by_side(f.plan.sample(), f.step_width());
+    EXPECT_EQ(f.plan.balance_steps(), 0) << "standing";
+    return static_cast<int>(f.touchdowns.size() - before);
+  };
+  const int stop = touchdowns_to_stand(false, -1);
+  EXPECT_GE(stop, 2) << "the step under way and the stop step";
+  EXPECT_EQ(touchdowns_to_stand(true, -1), stop + max_steps);
+  EXPECT_EQ(touchdowns_to_stand(true, 2), stop + 2);
+}
+
 // Step timing: a limit set before a touchdown shortens the steps planned there, and only those;
 // the steps after it keep the step time. The step under way is not touched.
 TEST(WalkingPlan, LimitedStepTimeShortensTheStepsPlannedAtTheNextTouchdown) {

@@ -54,6 +54,36 @@ TEST(WalkingStateMachine, SafeStopFromAFastGaitSlowsDownBeforeTheStopStep) {
   EXPECT_EQ(fsm.update(true, true), StepDecision::None);
 }
 
+// Not balanced enough to stand (must_step): a touchdown that would stop walks on, the stop step's
+// touchdown steps again instead of standing, in a normal stop and in a safe stop alike; standing
+// starts no step.
+TEST(WalkingStateMachine, MustStepKeepsSteppingInsteadOfStoppingOrStanding) {
+  WalkingStateMachine fsm;
+  EXPECT_EQ(fsm.update(false, false, true), StepDecision::None) << "standing: no step without a command";
+  fsm.update(true, false);
+  fsm.update(true, true);  // walking
+  EXPECT_EQ(fsm.update(false, true, true), StepDecision::Continue);
+  EXPECT_EQ(fsm.state(), WalkingState::Walking);
+  EXPECT_EQ(fsm.update(false, true), StepDecision::StopStep);
+  EXPECT_EQ(fsm.update(false, true, true), StepDecision::Continue) << "the stop step's touchdown steps on";
+  EXPECT_EQ(fsm.state(), WalkingState::Walking);
+  EXPECT_EQ(fsm.update(false, true), StepDecision::StopStep);
+  EXPECT_EQ(fsm.update(false, true), StepDecision::Stand);
+
+  WalkingStateMachine safe;
+  safe.update(true, false);
+  safe.update(true, true);
+  safe.enter_safe_stop();
+  EXPECT_EQ(safe.update(false, true, true), StepDecision::Continue);
+  EXPECT_EQ(safe.update(false, true), StepDecision::StopStep);
+  EXPECT_EQ(safe.update(false, true, true), StepDecision::Continue);
+  EXPECT_FALSE(safe.standing());
+  EXPECT_EQ(safe.update(false, true), StepDecision::StopStep);
+  EXPECT_EQ(safe.update(false, true), StepDecision::Stand);
+  EXPECT_TRUE(safe.standing());
+  EXPECT_EQ(safe.state(), WalkingState::SafeStop);
+}
+
 TEST(WalkingStateMachine, SafeStopWhileStandingKeepsStanding) {
   WalkingStateMachine fsm;
   fsm.enter_safe_stop();
