@@ -15,26 +15,34 @@
 namespace biped {
 namespace {
 
+// Feeds the gait events each foot's normal force [N], held for a duration [s], one update per
+// physics step of `dt`.
+struct SyntheticGait {
+  explicit SyntheticGait(double dt) : dt(dt) { g.reset(); }
+  void hold(double left, double right, double duration) {
+    for (double end = t + duration; t < end - 1e-9; t += dt) g.update(t, {left, right});
+  }
+  GaitEvents g;
+  double dt;
+  double t = 0.0;
+};
+
 // A synthetic gait: both feet down, the left lifts, lands, the right lifts, lands.
 TEST(GaitEvents, CountsTouchdownsAndTimesSingleSupports) {
-  GaitEvents g;
-  g.reset();
-  double t = 0.0;
-  auto hold = [&](double left, double right, double duration) {
-    for (double end = t + duration; t < end - 1e-9; t += 0.001) g.update(t, {left, right});
-  };
-  hold(300, 300, 0.2);
+  SyntheticGait gait(0.001);
+  const GaitEvents& g = gait.g;
+  gait.hold(300, 300, 0.2);
   EXPECT_FALSE(g.single_support());
-  hold(5, 600, 0.5);  // left swing
+  gait.hold(5, 600, 0.5);  // left swing
   EXPECT_TRUE(g.single_support());
   EXPECT_EQ(g.touchdowns(), 0);
   EXPECT_NEAR(g.single_support_start(), 0.2, 1e-9);
-  hold(30, 570, 0.01);  // between the thresholds: still in the air
+  gait.hold(30, 570, 0.01);  // between the thresholds: still in the air
   EXPECT_EQ(g.touchdowns(), 0);
-  hold(300, 300, 0.2);  // left lands
+  gait.hold(300, 300, 0.2);  // left lands
   EXPECT_EQ(g.touchdowns(), 1);
   EXPECT_NEAR(g.last_single_support_duration(), 0.51, 1e-9);
-  hold(600, 5, 0.4);  // right swing
+  gait.hold(600, 5, 0.4);  // right swing
   EXPECT_EQ(g.touchdowns_before_current_support(), 1);
   EXPECT_EQ(g.single_supports_started(), 2);
   EXPECT_NEAR(g.single_support_start(), 0.91, 1e-9) << "dated to the lift-off's start, not its confirmation";
@@ -43,27 +51,23 @@ TEST(GaitEvents, CountsTouchdownsAndTimesSingleSupports) {
 // A foot that bounces off the ground for a few milliseconds makes no touchdown and no single
 // support; a contact that holds counts, dated to its start.
 TEST(GaitEvents, BouncesShorterThanTheConfirmationTimeAreNotEvents) {
-  GaitEvents g;
-  g.reset();
-  double t = 0.0;
-  auto hold = [&](double left, double right, double duration) {
-    for (double end = t + duration; t < end - 1e-9; t += 0.0005) g.update(t, {left, right});
-  };
-  hold(300, 300, 0.2);
-  hold(300, 2, 0.003);  // the right foot leaves the ground for 3 ms
-  hold(300, 300, 0.1);
+  SyntheticGait gait(0.0005);
+  const GaitEvents& g = gait.g;
+  gait.hold(300, 300, 0.2);
+  gait.hold(300, 2, 0.003);  // the right foot leaves the ground for 3 ms
+  gait.hold(300, 300, 0.1);
   EXPECT_EQ(g.single_supports_started(), 0);
   EXPECT_EQ(g.touchdowns(), 0);
-  hold(5, 600, 0.4);  // left swing
+  gait.hold(5, 600, 0.4);  // left swing
   EXPECT_EQ(g.single_supports_started(), 1);
   EXPECT_NEAR(g.single_support_start(), 0.303, 1e-9);
-  hold(300, 300, 0.004);  // the swing foot touches for 4 ms, and swings on
-  hold(5, 600, 0.05);
+  gait.hold(300, 300, 0.004);  // the swing foot touches for 4 ms, and swings on
+  gait.hold(5, 600, 0.05);
   EXPECT_EQ(g.touchdowns(), 0);
   EXPECT_TRUE(g.single_support());
-  hold(300, 300, 0.02);  // lands
-  hold(2, 600, 0.002);   // and bounces
-  hold(300, 300, 0.2);
+  gait.hold(300, 300, 0.02);  // lands
+  gait.hold(2, 600, 0.002);   // and bounces
+  gait.hold(300, 300, 0.2);
   EXPECT_EQ(g.touchdowns(), 1);
   EXPECT_FALSE(g.single_support());
   EXPECT_NEAR(g.last_single_support_duration(), 0.454, 1e-9);
