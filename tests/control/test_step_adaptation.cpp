@@ -195,17 +195,22 @@ TEST(StepAdaptation, NonFiniteStateLeavesTheShiftAsItWas) {
   EXPECT_TRUE(adaptation.shift_rate().allFinite());
 }
 
+// One update in mid-swing with the measured CoM `error` [m] off the plan (the planned rates equal).
+StepAdaptation after_one_update(const StepAdaptationParams& params, const Eigen::Vector2d& error) {
+  StepAdaptation adaptation{params};
+  StepAdaptationInput in = mid_swing();
+  in.measured_com = error;
+  adaptation.update(kDt, in);
+  return adaptation;
+}
+
 // Step timing: quick steps only for an error beyond the dead band by more than quick_step_error,
 // along either axis or both together; never when switched off.
 TEST(StepAdaptation, QuickStepsOnlyForAnErrorBeyondTheDeadBandAndTheThreshold) {
   StepAdaptationParams params;  // the defaults: dead bands 0.06 / 0.04 m, threshold 0.05 m
   params.quick_step_time = 0.6;
-  StepAdaptationInput in = mid_swing();
-  const auto next_step_time = [&](const StepAdaptationParams& p, Eigen::Vector2d error) {
-    StepAdaptation adaptation{p};
-    in.measured_com = error;
-    adaptation.update(kDt, in);
-    return adaptation.max_next_step_time();
+  const auto next_step_time = [](const StepAdaptationParams& p, const Eigen::Vector2d& error) {
+    return after_one_update(p, error).max_next_step_time();
   };
   EXPECT_EQ(next_step_time(params, {0.0, 0.0}), 0.0);
   EXPECT_EQ(next_step_time(params, {0.10, 0.0}), 0.0);   // 0.04 beyond the band
@@ -225,12 +230,8 @@ TEST(StepAdaptation, QuickStepsOnlyForAnErrorBeyondTheDeadBandAndTheThreshold) {
 // balance_error; never when switched off (balance_steps 0, or the adaptation off) or not finite.
 TEST(StepAdaptation, UnbalancedOnlyForAnErrorBeyondTheDeadBandAndTheBalanceError) {
   StepAdaptationParams params;  // the defaults: dead bands 0.06 / 0.04 m, balance_error 0.02 m
-  StepAdaptationInput in = mid_swing();
-  const auto unbalanced = [&](const StepAdaptationParams& p, Eigen::Vector2d error) {
-    StepAdaptation adaptation{p};
-    in.measured_com = error;
-    adaptation.update(kDt, in);
-    return adaptation.unbalanced();
+  const auto unbalanced = [](const StepAdaptationParams& p, const Eigen::Vector2d& error) {
+    return after_one_update(p, error).unbalanced();
   };
   EXPECT_FALSE(unbalanced(params, {0.0, 0.0}));
   EXPECT_FALSE(unbalanced(params, {0.075, 0.0}));   // 0.015 beyond the band
