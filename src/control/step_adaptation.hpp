@@ -53,6 +53,14 @@ struct StepAdaptationParams {
   // (0: off), so that the robot does not come to stand with its DCM outside its feet.
   int balance_steps = 4;
   double balance_error = 0.02;
+  // Recovery step from standing: standing (after a stop or before the first command; not in the
+  // safe stop), a measured DCM within `standing_step_margin` [m] of the edge of the feet's support,
+  // or beyond it, starts steps at once, without the start's weight shift, and the balance before a
+  // stop keeps them going until the DCM is back (`balance_steps` counts the first step too; 0
+  // switches this off as well). Without, only the centre of pressure catches a push: LOLA
+  // standing held 21-23 N·s in every direction, 25 with it (docs/stabilizer.md).
+  bool standing_step = true;
+  double standing_step_margin = 0.02;
 };
 
 // What one cycle of the adaptation reads, all in the heading frame (x forward, y left) relative to

@@ -168,8 +168,12 @@ void WalkingController::adapt_steps(const SensorData& sensors) {
     plan_.shift_landing(Eigen::Vector2d::Zero(), Eigen::Vector2d::Zero());
     plan_.limit_next_step_time(0.0);
     plan_.keep_stepping(false, params_.step_adaptation.balance_steps);
+    Side first = Side::Right;
+    const bool needed = estimate && needs_standing_step(s, first);
+    plan_.step_from_standing(needed, first);
     return;
   }
+  plan_.step_from_standing(false, Side::Right);
   const FootReference& stance = s.feet[1 - swing];
   const Eigen::Matrix2d to_heading = yaw_rotation(-s.heading).topLeftCorner<2, 2>();
   StepAdaptationInput in;
@@ -197,6 +201,44 @@ void WalkingController::adapt_steps(const SensorData& sensors) {
   plan_.shift_landing(to_world * step_adaptation_.shift(), to_world * step_adaptation_.shift_rate());
   plan_.limit_next_step_time(step_adaptation_.max_next_step_time());
   plan_.keep_stepping(step_adaptation_.unbalanced(), params_.step_adaptation.balance_steps);
+}
+
+bool WalkingController::needs_standing_step(const PatternSample& s, Side& swing) const {
+  const StepAdaptationParams& p = params_.step_adaptation;
+  if (!p.standing_step || p.balance_steps == 0 || plan_.state() != WalkingState::Standing) return false;
+  // Heading frame, relative to the stance foot, as the CoM estimate.
+  const FootReference& stance = s.feet[index_of(s.stance)];
+  const Eigen::Matrix2d to_heading = yaw_rotation(-s.heading).topLeftCorner<2, 2>();
+  const double com_height = s.com.z() - stance.position.z() + plan_.pattern_generator().params().ankle_height;
+  const Eigen::Vector2d dcm =
+      com_estimator_.estimate() + com_estimator_.rate() / std::sqrt(model_.gravity() / std::max(com_height, 1e-3));
+  if (!dcm.allFinite()) return false;
+  // The box around both soles' corners: the support, up to the gap between the feet's toes or
+  // heels when they stand staggered.
+  Eigen::Vector2d low = Eigen::Vector2d::Constant(INFINITY), high = Eigen::Vector2d::Constant(-INFINITY);
+  for (Side side : kSides) {
+    const FootReference& f = s.feet[index_of(side)];
+    const FootInfo& foot = model_.foot(side);
+    const Eigen::Matrix2d turn = yaw_rotation(f.yaw - s.heading).topLeftCorner<2, 2>();
+    const Eigen::Vector2d ankle = to_heading * (f.position - stance.position).head<2>();
+    for (const double x : {foot.sole_x_min, foot.sole_x_max}) {
+      for (const double y : {foot.sole_y_min, foot.sole_y_max}) {
+        const Eigen::Vector2d corner = ankle + turn * (foot.sensor_position.head<2>() + Eigen::Vector2d(x, y));
+        low = low.cwiseMin(corner);
+        high = high.cwiseMax(corner);
+      }
+    }
+  }
+  const Eigen::Vector2d beyond = (low.array() + p.standing_step_margin - dcm.array())
+                                     .max(dcm.array() - high.array() + p.standing_step_margin)
+                                     .matrix();
+  if (beyond.maxCoeff() <= 0.0) return false;
+  // Out sideways: the foot on that side steps out. Out only forward or backward: the foot farther
+  // from the DCM, which carries less of the weight.
+  const bool towards_left = dcm.y() > 0.5 * (low.y() + high.y());
+  const bool left = beyond.y() > 0.0 ? towards_left : !towards_left;
+  swing = left ? Side::Left : Side::Right;
+  return true;
 }
 
 void WalkingController::adapt_to_terrain(const SensorData& sensors) {

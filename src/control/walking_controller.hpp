@@ -82,6 +82,9 @@ class WalkingController final : public Controller {
   bool detect_fall(const SensorData& sensors);
   // Where the foot in the air lands, from the last cycle's state estimate (control/step_adaptation).
   void adapt_steps(const SensorData& sensors);
+  // Standing after a stop: whether the measured DCM has come within standing_step_margin of the
+  // edge of the feet's support, or beyond it, and which foot then steps first (`swing`).
+  bool needs_standing_step(const PatternSample& s, Side& swing) const;
   // The footholds' and the CoM's heights from the F/T sensors (both needed).
   void adapt_to_terrain(const SensorData& sensors);
   // The height of the ground under a foot's sole against the pelvis, vertical in the world: the

@@ -32,6 +32,7 @@ void WalkingPlan::reset(const std::array<Footstep, 2>& feet, const Eigen::Vector
   max_next_step_time_ = 0.0;
   unbalanced_ = false;
   balance_steps_ = 0;
+  standing_step_ = false;
   replans_from_measured_ = 0;
   step_ = params_.step;
   step_.com_height = com.z();
@@ -66,16 +67,18 @@ const PatternSample& WalkingPlan::advance(double t, const WalkCommand& command) 
     landing_shift_.setZero();
     landing_shift_rate_.setZero();
   }
-  const bool must_step = unbalanced_ && balance_steps_ < max_balance_steps_;
+  const bool must_step = fsm_.state() == WalkingState::Standing ? standing_step_
+                                                                  : unbalanced_ && balance_steps_ < max_balance_steps_;
   const StepDecision decision = fsm_.update(wants_to_walk, at_touchdown, must_step);
+  const bool balance_step = (decision == StepDecision::Continue || decision == StepDecision::StartWalk) && !wants_to_walk;
   // Counted until the robot walks on by command or stands: the stop step after the last of them
   // does not start a new count.
-  if (decision == StepDecision::Continue && !wants_to_walk) {
+  if (balance_step) {
     ++balance_steps_;
   } else if (decision == StepDecision::Continue || decision == StepDecision::Stand) {
     balance_steps_ = 0;
   }
-  replan(t, decision, commanded ? v : VelocityCommand{});
+  replan(t, decision, commanded ? v : VelocityCommand{}, balance_step);
   pattern_.sample(t, sample_);
   for (FootReference& foot : sample_.feet) {
     if (foot.in_contact) continue;
@@ -98,7 +101,7 @@ void WalkingPlan::shift_landing(const Eigen::Vector2d& shift, const Eigen::Vecto
   landing_shift_rate_ = shift_rate;
 }
 
-void WalkingPlan::replan(double t, StepDecision decision, const VelocityCommand& command) {
+void WalkingPlan::replan(double t, StepDecision decision, const VelocityCommand& command, bool recovery) {
   if (decision == StepDecision::None) return;
   const bool walking = decision == StepDecision::StartWalk || decision == StepDecision::Continue;
   const double step_time = params_.table.lookup(planned_vx_, step_).step_time;
@@ -145,9 +148,13 @@ void WalkingPlan::replan(double t, StepDecision decision, const VelocityCommand&
   if (at_touchdown && max_next_step_time_ > 0.0) step.step_time = std::min(step.step_time, max_next_step_time_);
   switch (decision) {
     case StepDecision::StartWalk: {
-      // Step first with the foot on the side the robot moves or turns to.
-      const Side first_swing = (v.vy > 1e-3 || (std::abs(v.vy) <= 1e-3 && v.omega > 1e-3)) ? Side::Left : Side::Right;
-      plan_steps(feet_[index_of(other(first_swing))], v, step, t + step.step_time + params_.start_shift, 3, planned_);
+      // Step first with the foot on the side the robot moves or turns to; a recovery step at once
+      // with the foot it was given.
+      const Side first_swing = recovery ? standing_step_swing_
+                               : (v.vy > 1e-3 || (std::abs(v.vy) <= 1e-3 && v.omega > 1e-3)) ? Side::Left
+                                                                                           : Side::Right;
+      const double shift = recovery ? 0.0 : params_.start_shift;
+      plan_steps(feet_[index_of(other(first_swing))], v, step, t + step.step_time + shift, 3, planned_);
       num_planned_ = 3;
       break;
     }

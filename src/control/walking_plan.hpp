@@ -49,6 +49,13 @@ class WalkingPlan {
     unbalanced_ = unbalanced;
     max_balance_steps_ = max_steps;
   }
+  // Recovery step from standing (step adaptation): standing after a stop, `needed` starts steps
+  // with a zero command at once, `swing` first and without the start's weight shift
+  // (`start_shift`); keep_stepping() then decides at their touchdowns. Set every cycle.
+  void step_from_standing(bool needed, Side swing) {
+    standing_step_ = needed;
+    standing_step_swing_ = swing;
+  }
   // The robot's CoM as the state estimate has it (controller frame) and its velocity: the next
   // replanning at a touchdown starts from it instead of the plan's own state when they differ by
   // more than `threshold` [m] (position plus velocity / ω₀). `valid` false: from the plan's state.
@@ -75,8 +82,9 @@ class WalkingPlan {
   double max_speed_change() const;
 
  private:
-  // Plans with the command's vx, vy and ω ramped from the current plan's (StartWalk, Continue).
-  void replan(double t, StepDecision decision, const VelocityCommand& command);
+  // Plans with the command's vx, vy and ω ramped from the current plan's (StartWalk, Continue);
+  // `recovery`: a StartWalk to keep the balance (step_from_standing).
+  void replan(double t, StepDecision decision, const VelocityCommand& command, bool recovery);
 
   WalkingPlanParams params_;
   StepParameters step_;                       // params_.step with the measured width and CoM height
@@ -96,6 +104,8 @@ class WalkingPlan {
   bool unbalanced_ = false;
   int max_balance_steps_ = 0;
   int balance_steps_ = 0;
+  bool standing_step_ = false;
+  Side standing_step_swing_ = Side::Right;
   bool measured_valid_ = false;
   int replans_from_measured_ = 0;
   bool command_saturated_ = false;

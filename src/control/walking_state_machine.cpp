@@ -17,7 +17,7 @@ const char* name_of(WalkingState state) {
 StepDecision WalkingStateMachine::update(bool wants_to_walk, bool at_touchdown, bool must_step) {
   switch (state_) {
     case WalkingState::Standing:
-      if (!wants_to_walk) return StepDecision::None;
+      if (!wants_to_walk && !must_step) return StepDecision::None;
       state_ = WalkingState::Starting;
       return StepDecision::StartWalk;
     case WalkingState::Starting:

@@ -328,6 +328,10 @@ const ParameterTable<StepAdaptationParams> kStepAdaptationParameters = {
      "balance before a stop: at most this many more steps while the DCM error is too large to stand (0: off)"},
     {"balance_error", &StepAdaptationParams::balance_error, "m", kNonNegative,
      "balance before a stop: DCM error beyond the dead band at a touchdown above which the robot steps on"},
+    {"standing_step", &StepAdaptationParams::standing_step, "", {},
+     "recovery step from standing: a DCM at the edge of the feet's support starts steps at once"},
+    {"standing_step_margin", &StepAdaptationParams::standing_step_margin, "m", kNonNegative,
+     "recovery step from standing: the DCM this close to the support's edge (or beyond) steps"},
 };
 
 const ParameterTable<UpperBodyLeanParams> kUpperBodyLeanParameters = {

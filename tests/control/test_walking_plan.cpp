@@ -320,6 +320,30 @@ TEST(WalkingPlan, UnbalancedStopStepsOnAtMostMaxStepsThenStands) {
   EXPECT_EQ(touchdowns_to_stand(true, 2), stop + 2);
 }
 
+// Recovery step from standing: step_from_standing starts steps at once with the foot it names
+// (the first touchdown one step time later: no start shift), counted as a balance step; balanced
+// again (keep_stepping false), the stop follows and the robot stands with its feet side by side.
+TEST(WalkingPlan, StepFromStandingStartsAtOnceWithTheGivenFootAndStandsAgain) {
+  for (Side swing : kSides) {
+    PlanFixture f;
+    f.run(0.5, walk(0.0));
+    const double start = f.t;
+    f.plan.step_from_standing(true, swing);
+    f.run(0.5 + kDt, walk(0.0));
+    f.plan.step_from_standing(false, swing);
+    EXPECT_EQ(f.plan.state(), WalkingState::Starting);
+    ASSERT_EQ(f.plan.num_planned_steps(), 3);
+    EXPECT_EQ(f.plan.planned_step(0).side, swing);
+    EXPECT_NEAR(f.plan.planned_step(0).touchdown, start + f.step_time(), 1e-9);
+    EXPECT_EQ(f.plan.balance_steps(), 1);
+    f.run(6.0, walk(0.0));
+    EXPECT_EQ(f.plan.state(), WalkingState::Standing);
+    EXPECT_EQ(f.touchdowns.size(), 2u) << "the recovery step and the stop step";
+    expect_side_by_side(f.plan.sample(), f.step_width());
+    EXPECT_EQ(f.plan.balance_steps(), 0);
+  }
+}
+
 // Step timing: a limit set before a touchdown shortens the steps planned there, and only those;
 // the steps after it keep the step time. The step under way is not touched.
 TEST(WalkingPlan, LimitedStepTimeShortensTheStepsPlannedAtTheNextTouchdown) {

@@ -55,11 +55,9 @@ TEST(WalkingStateMachine, SafeStopFromAFastGaitSlowsDownBeforeTheStopStep) {
 }
 
 // Not balanced enough to stand (must_step): a touchdown that would stop walks on, the stop step's
-// touchdown steps again instead of standing, in a normal stop and in a safe stop alike; standing
-// starts no step.
+// touchdown steps again instead of standing, in a normal stop and in a safe stop alike.
 TEST(WalkingStateMachine, MustStepKeepsSteppingInsteadOfStoppingOrStanding) {
   WalkingStateMachine fsm;
-  EXPECT_EQ(fsm.update(false, false, true), StepDecision::None) << "standing: no step without a command";
   fsm.update(true, false);
   fsm.update(true, true);  // walking
   EXPECT_EQ(fsm.update(false, true, true), StepDecision::Continue);
@@ -82,6 +80,24 @@ TEST(WalkingStateMachine, MustStepKeepsSteppingInsteadOfStoppingOrStanding) {
   EXPECT_EQ(safe.update(false, true), StepDecision::Stand);
   EXPECT_TRUE(safe.standing());
   EXPECT_EQ(safe.state(), WalkingState::SafeStop);
+}
+
+// Standing, must_step starts walking at once (a recovery step), without a command and without
+// a touchdown; once stopped, the robot stands again. In the safe stop's standing it does not.
+TEST(WalkingStateMachine, MustStepWhileStandingStartsARecoveryStep) {
+  WalkingStateMachine fsm;
+  EXPECT_EQ(fsm.update(false, false), StepDecision::None);
+  EXPECT_EQ(fsm.update(false, false, true), StepDecision::StartWalk);
+  EXPECT_EQ(fsm.state(), WalkingState::Starting);
+  EXPECT_EQ(fsm.update(false, false, true), StepDecision::None) << "until the first touchdown";
+  EXPECT_EQ(fsm.update(false, true), StepDecision::StopStep);
+  EXPECT_EQ(fsm.update(false, true), StepDecision::Stand);
+  EXPECT_EQ(fsm.state(), WalkingState::Standing);
+
+  WalkingStateMachine safe;
+  safe.enter_safe_stop();
+  EXPECT_EQ(safe.update(false, false, true), StepDecision::None);
+  EXPECT_TRUE(safe.standing());
 }
 
 TEST(WalkingStateMachine, SafeStopWhileStandingKeepsStanding) {
