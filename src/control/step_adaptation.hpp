@@ -53,8 +53,8 @@ struct StepAdaptationParams {
   // (0: off), so that the robot does not come to stand with its DCM outside its feet.
   int balance_steps = 4;
   double balance_error = 0.02;
-  // Recovery step from standing: standing (after a stop or before the first command; not in the
-  // safe stop), a measured DCM within `standing_step_margin` [m] of the edge of the feet's support,
+  // Recovery step from standing: standing (after a stop, before the first command, or at the end
+  // of a safe stop), a measured DCM within `standing_step_margin` [m] of the edge of the feet's support,
   // or beyond it, starts steps at once, without the start's weight shift, and the balance before a
   // stop keeps them going until the DCM is back (`balance_steps` counts the first step too; 0
   // switches this off as well). Without, only the centre of pressure catches a push: LOLA

@@ -205,7 +205,7 @@ void WalkingController::adapt_steps(const SensorData& sensors) {
 
 bool WalkingController::needs_standing_step(const PatternSample& s, Side& swing) const {
   const StepAdaptationParams& p = params_.step_adaptation;
-  if (!p.standing_step || p.balance_steps == 0 || plan_.state() != WalkingState::Standing) return false;
+  if (!p.standing_step || p.balance_steps == 0 || !plan_.standing()) return false;
   // Heading frame, relative to the stance foot, as the CoM estimate.
   const FootReference& stance = s.feet[index_of(s.stance)];
   const Eigen::Matrix2d to_heading = yaw_rotation(-s.heading).topLeftCorner<2, 2>();

@@ -82,7 +82,7 @@ class WalkingController final : public Controller {
   bool detect_fall(const SensorData& sensors);
   // Where the foot in the air lands, from the last cycle's state estimate (control/step_adaptation).
   void adapt_steps(const SensorData& sensors);
-  // Standing after a stop: whether the measured DCM has come within standing_step_margin of the
+  // Standing (also at the end of a safe stop): whether the measured DCM has come within standing_step_margin of the
   // edge of the feet's support, or beyond it, and which foot then steps first (`swing`).
   bool needs_standing_step(const PatternSample& s, Side& swing) const;
   // The footholds' and the CoM's heights from the F/T sensors (both needed).

@@ -67,8 +67,7 @@ const PatternSample& WalkingPlan::advance(double t, const WalkCommand& command) 
     landing_shift_.setZero();
     landing_shift_rate_.setZero();
   }
-  const bool must_step = fsm_.state() == WalkingState::Standing ? standing_step_
-                                                                  : unbalanced_ && balance_steps_ < max_balance_steps_;
+  const bool must_step = fsm_.standing() ? standing_step_ : unbalanced_ && balance_steps_ < max_balance_steps_;
   const StepDecision decision = fsm_.update(wants_to_walk, at_touchdown, must_step);
   const bool balance_step = (decision == StepDecision::Continue || decision == StepDecision::StartWalk) && !wants_to_walk;
   // Counted until the robot walks on by command or stands: the stop step after the last of them

@@ -49,7 +49,7 @@ class WalkingPlan {
     unbalanced_ = unbalanced;
     max_balance_steps_ = max_steps;
   }
-  // Recovery step from standing (step adaptation): standing after a stop, `needed` starts steps
+  // Recovery step from standing (step adaptation): standing (standing()), `needed` starts steps
   // with a zero command at once, `swing` first and without the start's weight shift
   // (`start_shift`); keep_stepping() then decides at their touchdowns. Set every cycle.
   void step_from_standing(bool needed, Side swing) {

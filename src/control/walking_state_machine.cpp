@@ -38,6 +38,11 @@ StepDecision WalkingStateMachine::update(bool wants_to_walk, bool at_touchdown, 
       state_ = WalkingState::Standing;
       return StepDecision::Stand;
     case WalkingState::SafeStop:
+      // Standing at the end of the safe stop: a recovery step, then the stop again.
+      if (stop_progress_ == WalkingState::Standing && must_step) {
+        stop_progress_ = WalkingState::Starting;
+        return StepDecision::StartWalk;
+      }
       if (!at_touchdown) return StepDecision::None;
       if (stop_progress_ == WalkingState::Starting || stop_progress_ == WalkingState::Walking) {
         // Too fast to stop in one step: slow down; or not balanced enough to stand.

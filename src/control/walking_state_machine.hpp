@@ -3,8 +3,8 @@
 //   standing ──(walk command)──► starting ──(first touchdown)──► walking
 //   walking ──(stop or zero command at a touchdown)──► stopping ──(feet side by side)──► standing
 //   A touchdown at which the robot must step on to keep its balance (`must_step`) plans more steps
-//   instead of a stop step or standing (walking, or the safe stop's walking part); standing, it
-//   starts walking (a recovery step).
+//   instead of a stop step or standing (walking, or the safe stop's walking part); standing (also
+//   at the end of a safe stop), it starts walking (a recovery step).
 //   any ──(sensor fault)──► safe_stop: the walk command is ignored; a step under way is finished,
 //   steps that slow down follow while the gait is too fast to stop in one step (as a normal stop
 //   does), one more step puts the feet side by side, and the robot stands (the pattern and

@@ -320,6 +320,31 @@ TEST(WalkingControllerBalance, PushedWhileStandingStepsAndStandsAgain) {
   EXPECT_LE(walked[0], 1) << "without, of 8";
 }
 
+// The same at the end of a safe stop: LOLA stands with its right F/T sensor failed (NaN from 2 s)
+// and is pushed forward or backward by 25 N·s at 4 s. Without the recovery step it falls (measured:
+// seeds 1-3, 24 and 25 N·s, 12 of 12); with it, it steps (5-9 steps) and stands again, still in
+// the safe stop (0 of 12).
+TEST(WalkingControllerBalance, PushedStandingInASafeStopStepsAndStandsAgain) {
+  int walked[2] = {0, 0};
+  for (const bool step : {false, true}) {
+    for (const int direction : {0, 180}) {
+      const Scenario scenario = load_scenario(
+          test::source_path("config/scenarios/lola-push-standing.yaml"),
+          {"duration=8", "sensors.faults=[{t: 2.0, sensor: ft_right, value: nan}]",
+           std::string("controller.step_adaptation.standing_step=") + (step ? "true" : "false"),
+           "disturbances=[{type: push, t: 4.0, direction_deg: " + std::to_string(direction) +
+               ", impulse_Ns: 25, duration: 0.1}]"});
+      const ScenarioResult r = run_scenario(scenario, make_run_config(scenario), "");
+      if (r.summary["fell"].get<bool>()) continue;
+      ++walked[step];
+      EXPECT_EQ(r.summary["final_state"], "safe_stop") << direction;
+      EXPECT_GE(r.summary["steps"].get<int>(), 2) << direction;
+    }
+  }
+  EXPECT_EQ(walked[1], 2) << "with the recovery step, of 2";
+  EXPECT_EQ(walked[0], 0) << "without, of 2";
+}
+
 // Balance before a stop (step adaptation): LOLA walking at 0.3 m/s is told to stop and pushed
 // forward-left (60°) in the middle of the first single support after the command, 18.5 and 20 N·s.
 // Without, the stop step puts the feet side by side with the DCM outside them and the robot falls

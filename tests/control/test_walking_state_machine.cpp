@@ -83,7 +83,8 @@ TEST(WalkingStateMachine, MustStepKeepsSteppingInsteadOfStoppingOrStanding) {
 }
 
 // Standing, must_step starts walking at once (a recovery step), without a command and without
-// a touchdown; once stopped, the robot stands again. In the safe stop's standing it does not.
+// a touchdown; once stopped, the robot stands again. The same at the end of a safe stop, which
+// stays a safe stop.
 TEST(WalkingStateMachine, MustStepWhileStandingStartsARecoveryStep) {
   WalkingStateMachine fsm;
   EXPECT_EQ(fsm.update(false, false), StepDecision::None);
@@ -96,7 +97,14 @@ TEST(WalkingStateMachine, MustStepWhileStandingStartsARecoveryStep) {
 
   WalkingStateMachine safe;
   safe.enter_safe_stop();
-  EXPECT_EQ(safe.update(false, false, true), StepDecision::None);
+  EXPECT_TRUE(safe.standing());
+  EXPECT_EQ(safe.update(true, false), StepDecision::None) << "a command does not start a safe stop's robot";
+  EXPECT_EQ(safe.update(false, false, true), StepDecision::StartWalk);
+  EXPECT_EQ(safe.state(), WalkingState::SafeStop);
+  EXPECT_FALSE(safe.standing());
+  EXPECT_EQ(safe.update(false, true, true), StepDecision::Continue) << "still unbalanced";
+  EXPECT_EQ(safe.update(false, true), StepDecision::StopStep);
+  EXPECT_EQ(safe.update(false, true), StepDecision::Stand);
   EXPECT_TRUE(safe.standing());
 }
 
