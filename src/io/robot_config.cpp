@@ -106,6 +106,8 @@ const ParameterTable<StepParameters> kStepParameters = {
      "walking pattern without a step table: share of the step time on both feet"},
     {"clearance", &StepParameters::clearance, "m", kNonNegative,
      "walking pattern without a step table: swing-foot lift"},
+    {"swing_travel_share", &StepParameters::swing_travel_share, "", positive_at_most(1.0, "share of the swing time"),
+     "swing foot travels horizontally in this share of the swing, then comes down vertically; biped tables keeps it in the rows where it costs at most 5 mm of ZMP margin, else 1; with a table its rows' value"},
 };
 const ParameterTable<WalkingPlanParams> kWalkingPlanParameters = {
     {"start_shift", &WalkingPlanParams::start_shift, "s", kNonNegative,

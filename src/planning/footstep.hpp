@@ -13,6 +13,11 @@ struct StepParameters {
   double double_support_ratio = 0.2;  // share of the step time with both feet on the ground
   double com_height = 0.88;           // [m] height of the upper-body mass point above the ground
   double clearance = 0.04;            // [m] swing-foot lift
+  // Share of the swing time in which the swing foot travels horizontally (the quintic blend of
+  // position and yaw); the lift spans the whole swing. Below 1 the foot has arrived above its
+  // foothold while still up and comes down vertically, so a foot that meets a kerb or step edge
+  // early does not slide on over it (1: the paper's blend over the whole swing).
+  double swing_travel_share = 1.0;
   double step_width = 0.18;           // [m] lateral distance of the feet when walking straight
 };
 

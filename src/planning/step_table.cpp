@@ -23,6 +23,7 @@ StepParameters StepTable::lookup(double speed, const StepParameters& base) const
   p.step_time = lo->step_time + a * (hi->step_time - lo->step_time);
   p.double_support_ratio = lo->double_support_ratio + a * (hi->double_support_ratio - lo->double_support_ratio);
   p.clearance = lo->clearance + a * (hi->clearance - lo->clearance);
+  p.swing_travel_share = lo->swing_travel_share + a * (hi->swing_travel_share - lo->swing_travel_share);
   return p;
 }
 

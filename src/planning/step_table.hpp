@@ -13,14 +13,15 @@ struct StepTableRow {
   double double_support_ratio = 0.2;
   double clearance = 0.04;
   double zmp_margin = 0.0;  // [m] the criterion's value for this choice (for the record)
+  double swing_travel_share = 1.0;  // StepParameters::swing_travel_share (1 in a table written before it)
 };
 
 struct StepTable {
   std::vector<StepTableRow> rows;  // by increasing speed
 
   bool empty() const { return rows.empty(); }
-  // Step time, double-support share and clearance for |speed|, linearly interpolated between rows
-  // and held beyond the ends; the rest of `base` (width, CoM height) is kept.
+  // Step time, double-support share, clearance and swing travel share for |speed|, linearly
+  // interpolated between rows and held beyond the ends; the rest of `base` (width, CoM height) is kept.
   StepParameters lookup(double speed, const StepParameters& base) const;
 };
 

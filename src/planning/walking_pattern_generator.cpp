@@ -220,7 +220,10 @@ void WalkingPatternGenerator::foot_at(Side side, double t, FootReference& foot) 
     const double duration = touchdown - lift_time;
     const double tau = (t - lift_time) / duration;
     double s, ds_dtau, dds_dtau, l, dl, ddl;
-    quintic(tau, s, ds_dtau, dds_dtau);
+    const double travel = step_params_.swing_travel_share;
+    quintic(std::min(tau / travel, 1.0), s, ds_dtau, dds_dtau);
+    ds_dtau /= travel;
+    dds_dtau /= travel * travel;
     lift(tau, l, dl, ddl);
     const Eigen::Vector2d delta = steps_[k].position - from.position;
     const double dyaw = math::wrap_angle(steps_[k].yaw - from.yaw);

@@ -17,7 +17,10 @@
 // The feasible candidate with the largest margin is chosen (if none is feasible, the one with the
 // largest margin, and the row says so with a negative or zero margin). Speed 0 is standing: its row
 // keeps the nominal parameters (used by the stop step). The fastest row with a positive margin
-// bounds the commands the planner accepts (faster ones are saturated).
+// bounds the commands the planner accepts (faster ones are saturated). Each row is searched with the
+// robot file's swing travel share and, where that is below 1, with the foot travelling the whole
+// swing; the row keeps the set-down share unless the whole-swing travel has more than
+// `margin_tolerance` more margin (or is the only one that passes).
 #include <iosfwd>
 #include <string>
 

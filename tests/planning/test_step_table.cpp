@@ -7,11 +7,13 @@ namespace {
 
 TEST(StepTable, InterpolatesBetweenRowsAndHoldsBeyondTheEnds) {
   StepTable table;
-  table.rows = {{0.0, 1.0, 0.3, 0.04, 0.05}, {0.5, 0.8, 0.2, 0.05, 0.04}, {1.0, 0.6, 0.1, 0.05, 0.01}};
+  table.rows = {{0.0, 1.0, 0.3, 0.04, 0.05, 0.8}, {0.5, 0.8, 0.2, 0.05, 0.04, 0.8}, {1.0, 0.6, 0.1, 0.05, 0.01, 1.0}};
   StepParameters base;
   base.step_width = 0.21;
   const StepParameters mid = table.lookup(0.25, base);
   EXPECT_NEAR(mid.step_time, 0.9, 1e-12);
+  EXPECT_NEAR(mid.swing_travel_share, 0.8, 1e-12);
+  EXPECT_NEAR(table.lookup(0.75, base).swing_travel_share, 0.9, 1e-12);
   EXPECT_NEAR(mid.double_support_ratio, 0.25, 1e-12);
   EXPECT_NEAR(mid.clearance, 0.045, 1e-12);
   EXPECT_DOUBLE_EQ(mid.step_width, 0.21) << "what the table does not hold is kept";

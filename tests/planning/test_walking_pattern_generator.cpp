@@ -179,6 +179,44 @@ TEST(WalkingPatternGenerator, PrescribedVerticalBodyMotion) {
   EXPECT_NEAR(highest, lola_like().com_height_variation, 1e-4);
 }
 
+// The swing foot has arrived above its foothold after `swing_travel_share` of the swing and comes
+// down vertically from there; its velocity is the derivative of its position throughout.
+TEST(WalkingPatternGenerator, SwingFootArrivesAboveItsFootholdThenComesDownVertically) {
+  for (const double share : {0.8, 1.0}) {
+    const PatternGeneratorParams p = lola_like();
+    Walk walk;
+    walk.params.swing_travel_share = share;
+    walk.start();
+    walk.walk({0.6, 0.0, 0.2}, 4, 0.5);
+    const double dt = 0.005, single_support = walk.params.step_time * (1.0 - walk.params.double_support_ratio);
+    int late_samples = 0;
+    double late_horizontal_speed = 0.0;
+    for (std::size_t i = 1; i + 1 < walk.samples.size(); ++i) {
+      for (int k = 0; k < 2; ++k) {
+        const FootReference& f = walk.samples[i].feet[k];
+        if (f.in_contact || walk.samples[i - 1].feet[k].in_contact || walk.samples[i + 1].feet[k].in_contact) continue;
+        const Eigen::Vector3d difference =
+            (walk.samples[i + 1].feet[k].position - walk.samples[i - 1].feet[k].position) / (2 * dt);
+        EXPECT_LT((difference - f.velocity).norm(), 0.02) << "share " << share << " t " << walk.times[i];
+        const double tau = 1.0 - f.time_to_touchdown / single_support;
+        if (tau < 0.85) continue;
+        ++late_samples;
+        late_horizontal_speed = std::max(late_horizontal_speed, f.velocity.head<2>().norm());
+        EXPECT_GT(f.position.z(), p.ankle_height) << "share " << share << " t " << walk.times[i];
+        if (share < 1.0) {
+          EXPECT_NEAR(f.swing_progress, 1.0, 1e-12);
+        }
+      }
+    }
+    ASSERT_GT(late_samples, 10);
+    if (share < 1.0) {
+      EXPECT_LT(late_horizontal_speed, 1e-12);
+    } else {
+      EXPECT_GT(late_horizontal_speed, 0.1);  // the blend over the whole swing still moves the foot
+    }
+  }
+}
+
 TEST(WalkingPatternGenerator, StopBringsTheCoMToRestBetweenTheFeet) {
   Walk walk;
   walk.start();

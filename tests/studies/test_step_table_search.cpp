@@ -86,5 +86,36 @@ TEST(StepTableSearch, TheRelaxedCriterionOnlyAddsFasterRows) {
   EXPECT_LE(std::abs(relaxed.rows[1].step_time - relaxed.rows[0].step_time), search.max_step_time_change + 1e-9);
 }
 
+// Each row keeps the swing that travels first and comes down vertically (`swing_travel_share`
+// 0.8, as config/tables/lola-set-down.csv was made) unless travelling the whole swing keeps more than the tolerance more
+// ZMP margin: LOLA's slow gait keeps it; at 1.0 m/s the harder leg swing leaves no gait with it.
+TEST(StepTableSearch, ARowTravelsTheWholeSwingOnlyWhereItsGaitNeedsIt) {
+  const RunConfig config = make_run_config(test::robot_scenario("lola"));
+  const RobotModel model = load_controller_model(config);
+  WalkingControllerParams base = config.controller.walking;
+  base.plan.step.swing_travel_share = 0.8;
+  StepTableSearch search;
+  search.speeds = {0.4, 1.0};
+  search.step_times = {0.4, 0.5};
+  search.double_support_ratios = {0.15};
+  search.steps = 6;
+  const StepTable table = generate_step_table(model, base, search, nullptr, nullptr);
+  ASSERT_EQ(table.rows.size(), 2u);
+  for (const StepTableRow& row : table.rows) {
+    WalkingControllerParams set_down = base, whole = base;
+    whole.plan.step.swing_travel_share = 1.0;
+    const double with_set_down = evaluate_step_candidate(model, set_down, row.speed, row.step_time,
+                                                         row.double_support_ratio, search.steps,
+                                                         search.settle_steps, search.zmp_window).zmp_margin;
+    const double with_whole = evaluate_step_candidate(model, whole, row.speed, row.step_time, row.double_support_ratio,
+                                                      search.steps, search.settle_steps, search.zmp_window).zmp_margin;
+    EXPECT_DOUBLE_EQ(row.zmp_margin, row.swing_travel_share < 1.0 ? with_set_down : with_whole) << row.speed;
+  }
+  EXPECT_DOUBLE_EQ(table.rows[0].swing_travel_share, base.plan.step.swing_travel_share);
+  EXPECT_GT(table.rows[0].zmp_margin, 0.02);
+  EXPECT_DOUBLE_EQ(table.rows[1].swing_travel_share, 1.0);
+  EXPECT_GT(table.rows[1].zmp_margin, 0.0);
+}
+
 }  // namespace
 }  // namespace biped
