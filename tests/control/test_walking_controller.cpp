@@ -267,15 +267,15 @@ TEST(WalkingControllerCommandShaping, JoystickSlamsAreWalkedOnlyWithTheCombinedB
 // The hip strategy (control/upper_body_lean) on against off: LOLA at 0.3 m/s pushed sideways towards
 // the stance foot early in its single support (touchdown 3, a share 0.125 in: about 4.8 s), where
 // the centre of pressure is already near the sole's edge and the swing foot cannot land beyond the
-// stance foot (docs/stabilizer.md). Impulses 18.5-20 N·s, six sensor seeds each; measured with the
-// shipped table's 0.4 s steps: 16 of 24 walk with the lean, 6 of 24 without (18 N·s: 6 of 6 both
-// ways; 21 N·s: none). With the earlier table's 1 s steps the same band lay at 10-13 N·s: 17 and 6
-// of 24 (docs/walking.md "Short steps").
+// stance foot (docs/stabilizer.md). Impulses 21-22.5 N·s, six sensor seeds each; measured with the
+// shipped table's swing that comes down vertically (2026-12-01): 15 of 24 walk with the lean, 5 of 24
+// without (20 N·s: 6 of 6 both ways; 23 N·s: 1 and 0). With the earlier whole-swing table the band
+// lay at 18.5-20 N·s (16 and 6 of 24), with its 1 s steps at 10-13 N·s (docs/walking.md "Short steps").
 TEST(WalkingControllerHipStrategy, EarlySidewaysPushesAreCaughtMoreOftenWithTheLean) {
   int walked[2] = {0, 0};
   for (const bool lean : {false, true}) {
     for (int seed = 1; seed <= 6; ++seed) {
-      for (const double impulse : {18.5, 19.0, 19.5, 20.0}) {
+      for (const double impulse : {21.0, 21.5, 22.0, 22.5}) {
         const Scenario scenario = load_scenario(
             test::source_path("config/scenarios/lola-push.yaml"),
             {"commands.1.vx=0.3", "seed=" + std::to_string(seed),
@@ -287,7 +287,7 @@ TEST(WalkingControllerHipStrategy, EarlySidewaysPushesAreCaughtMoreOftenWithTheL
       }
     }
   }
-  EXPECT_GE(walked[1], 14) << "with the lean, of 24";
+  EXPECT_GE(walked[1], 13) << "with the lean, of 24";
   EXPECT_GE(walked[1], walked[0] + 7) << "without: " << walked[0];
 }
 

@@ -204,15 +204,15 @@ TEST(RunRecorder, StepsCountGroundTruthTouchdowns) {
   EXPECT_EQ(standing.summary(standing.recorder)["steps"].get<int>(), 0);
 }
 
-// JOHNNIE's open loop falls (at about 4.8 s); the run goes on for a second after it, its feet
-// bouncing and its IMU shaken by the impact. Steps end at the fall, and the impact's sensor fault is
-// reported as a consequence of the fall, not as the run's fault.
+// LOLA's open loop at 0.4 m/s falls (at about 6.1 s); the run goes on for two seconds after it, its
+// feet bouncing and its IMU shaken by the impact. Steps end at the fall, and the impact's sensor
+// fault is reported as a consequence of the fall, not as the run's fault.
 TEST(RunRecorder, AFallEndsTheStepsAndItsImpactFaultIsNotTheCause) {
-  const RecordedRun fall("johnnie-walk-open-loop.yaml", 8.0);
+  const RecordedRun fall("lola-walk-open-loop.yaml", 8.0, "commands.1.vx=0.4");
   ASSERT_TRUE(fall.result.fell);
   const nlohmann::json s = fall.summary(fall.recorder);
   // The same run ended at the moment of the fall (deterministic: the same touchdowns until then).
-  const RecordedRun until_fall("johnnie-walk-open-loop.yaml", fall.result.fall_time);
+  const RecordedRun until_fall("lola-walk-open-loop.yaml", fall.result.fall_time, "commands.1.vx=0.4");
   EXPECT_GE(s["steps"].get<int>(), 4);
   EXPECT_EQ(s["steps"], until_fall.summary(until_fall.recorder)["steps"]);
   ASSERT_TRUE(fall.controller->status().fault) << "the impact trips the sensor check";

@@ -49,7 +49,9 @@ RunConfig jvrc1_config() { return make_run_config(test::robot_scenario("jvrc1"))
 TEST(StepTableSearch, AShortZmpExcursionDoesNotCondemnAGaitThatWalks) {
   const RunConfig config = jvrc1_config();
   const RobotModel model = load_controller_model(config);
-  const WalkingControllerParams& base = config.controller.walking;
+  // The paper's swing, travelling the whole swing time: its leg stops short just before touchdown.
+  WalkingControllerParams base = config.controller.walking;
+  base.plan.step.swing_travel_share = 1.0;
   const double speed = 0.7, step_time = 0.45, double_support = 0.2, one_cycle = base.rmrc.dt;
   const CandidateResult instant = evaluate_step_candidate(model, base, speed, step_time, double_support, 6, 2, one_cycle);
   const CandidateResult averaged = evaluate_step_candidate(model, base, speed, step_time, double_support, 6, 2,
@@ -87,13 +89,13 @@ TEST(StepTableSearch, TheRelaxedCriterionOnlyAddsFasterRows) {
 }
 
 // Each row keeps the swing that travels first and comes down vertically (`swing_travel_share`
-// 0.8, as config/tables/lola-set-down.csv was made) unless travelling the whole swing keeps more than the tolerance more
-// ZMP margin: LOLA's slow gait keeps it; at 1.0 m/s the harder leg swing leaves no gait with it.
+// 0.8, as the robot file says and config/tables/lola.csv was made) unless travelling the whole
+// swing keeps more than the tolerance more ZMP margin: LOLA's slow gait keeps it; at 1.0 m/s the harder leg swing leaves no gait with it.
 TEST(StepTableSearch, ARowTravelsTheWholeSwingOnlyWhereItsGaitNeedsIt) {
   const RunConfig config = make_run_config(test::robot_scenario("lola"));
   const RobotModel model = load_controller_model(config);
-  WalkingControllerParams base = config.controller.walking;
-  base.plan.step.swing_travel_share = 0.8;
+  const WalkingControllerParams base = config.controller.walking;
+  ASSERT_LT(base.plan.step.swing_travel_share, 1.0);
   StepTableSearch search;
   search.speeds = {0.4, 1.0};
   search.step_times = {0.4, 0.5};
