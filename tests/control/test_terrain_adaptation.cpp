@@ -560,7 +560,7 @@ bool falls(const char* scenario, double x, bool adaptation, const std::string& t
 // LOLA at 0.4 m/s onto a 2.5 cm step up and a 6° slope it is not told about: with the adaptation it
 // walks on (the slope up to 8° measured); without it (force control alone, bounded to ±2 cm and
 // returning to zero in swing) it falls. With the swing foot that travels first and comes down
-// vertically (the shipped tables since 2026-12-01) the 5° slope of the robustness issue's uphill goal
+// vertically (the shipped tables since 2026-12-07) the 5° slope of the robustness issue's uphill goal
 // walks without the adaptation too; 6°, 7° and 8° fall without it. History: with the earlier
 // whole-swing table of 0.4 s steps 3° and 4° walked without it, 5° fell; with 1 s steps 3° fell.
 TEST(TerrainAdaptation, UnexpectedStepUpAndSlopeAreWalkedOnlyWithTheAdaptation) {
@@ -575,7 +575,7 @@ TEST(TerrainAdaptation, UnexpectedStepUpAndSlopeAreWalkedOnlyWithTheAdaptation) 
 // on the lower level (late contact); at 1.2 and 1.25 m only the rear of its heel is on the upper
 // level and the toe over the edge (partial support). With the adaptation all three walk. Without
 // it the partly supported landings fall; the late contact at 1.0 m, met by a foot that comes down
-// vertically, walks without it since the shipped tables set the foot down (2026-12-01: it fell with
+// vertically, walks without it since the shipped tables set the foot down (2026-12-07: it fell with
 // the whole-swing table at 5.6 s, and a 4 cm step there falls without the adaptation).
 TEST(TerrainAdaptation, UnexpectedStepDownIsWalkedOnlyWithTheAdaptation) {
   for (double x : {1.0, 1.2, 1.25}) EXPECT_FALSE(falls("lola-terrain-step-down", x, true, "terrain.0.height=-0.03")) << x;

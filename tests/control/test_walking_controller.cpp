@@ -268,7 +268,7 @@ TEST(WalkingControllerCommandShaping, JoystickSlamsAreWalkedOnlyWithTheCombinedB
 // the stance foot early in its single support (touchdown 3, a share 0.125 in: about 4.8 s), where
 // the centre of pressure is already near the sole's edge and the swing foot cannot land beyond the
 // stance foot (docs/stabilizer.md). Impulses 21-22.5 N·s, six sensor seeds each; measured with the
-// shipped table's swing that comes down vertically (2026-12-01): 15 of 24 walk with the lean, 5 of 24
+// shipped table's swing that comes down vertically (shipped since 2026-12-07): 15 of 24 walk with the lean, 5 of 24
 // without (20 N·s: 6 of 6 both ways; 23 N·s: 1 and 0). With the earlier whole-swing table the band
 // lay at 18.5-20 N·s (16 and 6 of 24), with its 1 s steps at 10-13 N·s (docs/walking.md "Short steps").
 TEST(WalkingControllerHipStrategy, EarlySidewaysPushesAreCaughtMoreOftenWithTheLean) {
