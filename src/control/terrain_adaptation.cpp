@@ -127,10 +127,16 @@ void TerrainAdaptation::take_slope(Foot& foot, const Foot& stance, const FootRef
   const bool agrees = std::abs(predicted - (stance.ground - foot.ground)) <=
                       kSlopeAgreement * std::abs(predicted) + params_.slope_tolerance;
   const double descent = gradient.dot(plan.position.head<2>() - stance.position);
-  if (params_.predict_slope && descent < 0.0 && gradient.norm() > std::tan(params_.min_slope) && agrees) {
-    const Eigen::Vector2d forward(std::cos(plan.yaw), std::sin(plan.yaw)), left(-forward.y(), forward.x());
+  const bool slope_known = gradient.norm() > std::tan(params_.min_slope) && agrees;
+  const Eigen::Vector2d forward(std::cos(plan.yaw), std::sin(plan.yaw)), left(-forward.y(), forward.x());
+  if (params_.predict_slope && descent < 0.0 && slope_known) {
     goal = Eigen::Vector2d(std::atan(gradient.dot(left)), -std::atan(gradient.dot(forward)));
     target += descent;
+  } else if (params_.take_side_slope && slope_known) {
+    // Not descending, the foot still rolls to the ground's side slope: landing level on it, its
+    // uphill edge would touch first, the centre of pressure held there pushing the CoM downhill at
+    // every touchdown, and no search turns a sole about its long axis.
+    goal.x() = std::atan(gradient.dot(left));
   }
   turn_to_slope(foot, goal, dt);
 }

@@ -25,7 +25,10 @@
 //    it gives. (Aiming at the stance foot's height, LOLA's feet landed late on a 4° downhill
 //    slope, heel first, behind the CoM: each touchdown added some 5 cm to the DCM error, the
 //    stabilizer asked for the centre of pressure at the toe, the heel lifted, and it fell within a
-//    few steps.)
+//    few steps.) Elsewhere (level ground ahead, or uphill) the swing foot still rolls to that
+//    slope's sideways part, where the footholds' heights agree with it: landing level on a side
+//    slope, its uphill edge touched first and the centre of pressure held there pushed the CoM
+//    downhill at every touchdown.
 // The outputs are height offsets added to the feet's and the CoM's planned heights, and tilts added
 // to the feet's planned orientations in eq. (21); force control (eq. 20) acts on top of them.
 #include <array>
@@ -72,6 +75,9 @@ struct TerrainAdaptationParams {
   double tilt_search_speed = 0.5; // [rad/s] turn of a foot in edge contact about that edge
   double max_tilt = 0.15;         // [rad] bound of a foot's tilt
   bool predict_slope = true;      // downhill, the swing foot takes the stance foot's ground slope (above)
+  // Elsewhere (level or uphill) the swing foot still takes that slope's roll about its own forward
+  // axis (a side slope), not its pitch or height.
+  bool take_side_slope = true;
   double min_slope = 0.02;        // [rad] shallower slopes are taken for level ground
   double max_slope = 0.1;         // [rad] bound of that slope
   // [m] the slope is taken if the height it gives between the last two footholds is within this

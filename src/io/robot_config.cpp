@@ -296,6 +296,8 @@ const ParameterTable<TerrainAdaptationParams> kTerrainAdaptationParameters = {
     {"max_tilt", &TerrainAdaptationParams::max_tilt, "rad", kPositive, "partial support: bound of a foot's tilt"},
     {"predict_slope", &TerrainAdaptationParams::predict_slope, "", {},
      "downhill: the swing foot takes the slope the stance foot stands on"},
+    {"take_side_slope", &TerrainAdaptationParams::take_side_slope, "", {},
+     "not downhill: the swing foot still rolls to the side slope the stance foot stands on"},
     {"min_slope", &TerrainAdaptationParams::min_slope, "rad", kNonNegative, "downhill: shallower slopes are taken for level ground"},
     {"max_slope", &TerrainAdaptationParams::max_slope, "rad", kPositive, "downhill: bound of that slope"},
     {"slope_tolerance", &TerrainAdaptationParams::slope_tolerance, "m", kPositive,
