@@ -55,16 +55,23 @@ SensorEmulationParams sensor_params(const SimulationParams& p, const RobotModel&
   return s;
 }
 
+// The corners of a sole face where its body is now (world frame).
+std::array<Eigen::Vector3d, 4> face_corners(const SoleFace& f, const mjData* d) {
+  const Eigen::Vector3d origin(d->xpos + 3 * f.body);
+  const Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> rot(d->xmat + 9 * f.body);
+  std::array<Eigen::Vector3d, 4> corners;
+  for (int c = 0; c < 4; ++c) {  // in order around the face
+    const double u = c == 1 || c == 2 ? 1.0 : -1.0, v = c >= 2 ? 1.0 : -1.0;
+    corners[c] = origin + rot * (f.center + u * f.half_u * f.axes.col(0) + v * f.half_v * f.axes.col(1));
+  }
+  return corners;
+}
+
 // Lowest point of the soles above the ground, with the robot at its current qpos.
 double sole_clearance(const std::vector<SoleFace>& faces, const mjData* d, const Terrain& terrain) {
   double clearance = std::numeric_limits<double>::infinity();
   for (const SoleFace& f : faces) {
-    const Eigen::Vector3d origin(d->xpos + 3 * f.body);
-    const Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> rot(d->xmat + 9 * f.body);
-    for (int c = 0; c < 4; ++c) {
-      const Eigen::Vector3d local =
-          f.center + (c & 1 ? 1 : -1) * f.half_u * f.axes.col(0) + (c & 2 ? 1 : -1) * f.half_v * f.axes.col(1);
-      const Eigen::Vector3d corner = origin + rot * local;
+    for (const Eigen::Vector3d& corner : face_corners(f, d)) {
       clearance = std::min(clearance, corner.z() - terrain.height(corner.head<2>()));
     }
   }
@@ -122,6 +129,17 @@ void Simulation::reset() {
   pushes_.reset();
   fall_reason_ = nullptr;
   fall_time_ = 0.0;
+}
+
+std::vector<Simulation::SoleOutline> Simulation::sole_outlines() const {
+  std::vector<SoleOutline> outlines;
+  for (const SoleFace& f : sole_contact_.faces()) {
+    SoleOutline o{f.side == index_of(Side::Left) ? Side::Left : Side::Right, {}};
+    const std::array<Eigen::Vector3d, 4> corners = face_corners(f, data_.get());
+    for (int c = 0; c < 4; ++c) o.corners[c] = corners[c].head<2>();
+    outlines.push_back(o);
+  }
+  return outlines;
 }
 
 void Simulation::read_sensors(SensorData& out) { sensors_.sample(data_.get(), data_->time, out); }

@@ -4,6 +4,7 @@
 // The controller talks to it only through SensorData and JointCommand.
 #include <mujoco/mujoco.h>
 
+#include <array>
 #include <map>
 #include <memory>
 #include <string>
@@ -72,6 +73,12 @@ class Simulation {
   const SensorEmulation& sensors() const { return sensors_; }
   const Terrain& terrain() const { return terrain_; }
   const SoleContact& sole_contact() const { return sole_contact_; }
+  // The soles' rectangles seen from above, where they are now (one per sole geom).
+  struct SoleOutline {
+    Side side;
+    std::array<Eigen::Vector2d, 4> corners;  // in order around the sole
+  };
+  std::vector<SoleOutline> sole_outlines() const;
   const CollisionGate& collision_gate() const { return collision_gate_; }
   // Touchdowns and single supports of the ground truth, and when each push started.
   const GaitEvents& gait_events() const { return gait_; }

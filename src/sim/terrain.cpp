@@ -40,24 +40,31 @@ bool Terrain::Placed::covers(const Eigen::Vector2d& p) const {
   return std::abs(direction.dot(r)) <= 0.5 * feature.length && std::abs(across.dot(r)) <= 0.5 * feature.width;
 }
 
-std::vector<Terrain::Overlap> Terrain::overlaps(const std::vector<TerrainFeature>& features) {
-  // Two rectangles overlap unless an edge direction of one of them separates them (separating axes).
-  auto separated = [](const std::array<Eigen::Vector2d, 4>& a, const std::array<Eigen::Vector2d, 4>& b) {
-    for (const auto* shape : {&a, &b}) {
-      for (int e = 0; e < 2; ++e) {
-        const Eigen::Vector2d axis = (*shape)[e + 1] - (*shape)[e];
-        double a_min = INFINITY, a_max = -INFINITY, b_min = INFINITY, b_max = -INFINITY;
-        for (int k = 0; k < 4; ++k) {
-          a_min = std::min(a_min, axis.dot(a[k]));
-          a_max = std::max(a_max, axis.dot(a[k]));
-          b_min = std::min(b_min, axis.dot(b[k]));
-          b_max = std::max(b_max, axis.dot(b[k]));
-        }
-        if (a_max <= b_min || b_max <= a_min) return true;
+namespace {
+
+// Two convex quadrilaterals (corners in order) are apart, or only touch, when an edge direction of
+// one of them separates them (separating axes).
+bool separated(const std::array<Eigen::Vector2d, 4>& a, const std::array<Eigen::Vector2d, 4>& b) {
+  for (const auto* shape : {&a, &b}) {
+    for (int e = 0; e < 4; ++e) {
+      const Eigen::Vector2d edge = (*shape)[(e + 1) % 4] - (*shape)[e];
+      const Eigen::Vector2d axis(-edge.y(), edge.x());
+      double a_min = INFINITY, a_max = -INFINITY, b_min = INFINITY, b_max = -INFINITY;
+      for (int k = 0; k < 4; ++k) {
+        a_min = std::min(a_min, axis.dot(a[k]));
+        a_max = std::max(a_max, axis.dot(a[k]));
+        b_min = std::min(b_min, axis.dot(b[k]));
+        b_max = std::max(b_max, axis.dot(b[k]));
       }
+      if (a_max <= b_min || b_max <= a_min) return true;
     }
-    return false;
-  };
+  }
+  return false;
+}
+
+}  // namespace
+
+std::vector<Terrain::Overlap> Terrain::overlaps(const std::vector<TerrainFeature>& features) {
   std::vector<Overlap> found;
   for (int i = 0; i < static_cast<int>(features.size()); ++i) {
     for (int j = i + 1; j < static_cast<int>(features.size()); ++j) {
@@ -68,6 +75,27 @@ std::vector<Terrain::Overlap> Terrain::overlaps(const std::vector<TerrainFeature
     }
   }
   return found;
+}
+
+bool Terrain::reshapes_ground_within(const TerrainFeature& f, const std::array<Eigen::Vector2d, 4>& outline) {
+  switch (f.kind) {
+    case TerrainFeature::Kind::Step:
+    case TerrainFeature::Kind::Slope: {
+      if ((f.kind == TerrainFeature::Kind::Step ? f.height : f.angle_deg) == 0.0) return false;
+      const double heading = f.heading_deg * kDegToRad;
+      const Eigen::Vector2d rising(std::cos(heading), std::sin(heading));
+      const double start = rising.dot(f.at);
+      for (const Eigen::Vector2d& corner : outline) {
+        if (rising.dot(corner) > start + 1e-9) return true;
+      }
+      return false;
+    }
+    case TerrainFeature::Kind::Box:
+      return f.height != 0.0 && !separated(corners(f), outline);
+    case TerrainFeature::Kind::Friction:
+      return false;
+  }
+  return false;
 }
 
 Terrain::Terrain(const std::vector<TerrainFeature>& features) : features_(features) {

@@ -45,6 +45,11 @@ class Terrain {
     int first, second;
   };
   static std::vector<Overlap> overlaps(const std::vector<TerrainFeature>& features);
+  // Whether feature f changes the ground's height or slope anywhere inside the convex quadrilateral
+  // `outline` (a sole seen from above): the far side of a step's edge or a slope's start line
+  // reaching into it, a box overlapping it. Touching along an edge does not count; friction patches
+  // never do.
+  static bool reshapes_ground_within(const TerrainFeature& f, const std::array<Eigen::Vector2d, 4>& outline);
 
   // Friction coefficient at p: a patch's, or `elsewhere`.
   double friction(const Eigen::Vector2d& p, double elsewhere) const;

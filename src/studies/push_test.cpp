@@ -21,6 +21,7 @@ Trial run_trial(const Scenario& scenario, const RunConfig& base, const Push& pus
   config.sim.pushes.push_back(push);
   const RobotModel model = load_controller_model(config);
   Simulation sim(config.sim, model);
+  check_scenario_against_simulation(scenario, sim);
   std::unique_ptr<Controller> controller = make_controller(config, model);
   RunOptions options;
   options.duration = scenario.duration;

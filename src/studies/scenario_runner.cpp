@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <utility>
 #include <vector>
@@ -97,11 +98,29 @@ void check_scenario_against_model(const Scenario& s, const RobotModel& model) {
   }
 }
 
+void check_scenario_against_simulation(const Scenario& s, const Simulation& sim) {
+  static const char* const kKind[] = {"step", "slope", "box", "friction patch"};
+  for (std::size_t i = 0; i < s.terrain.size(); ++i) {
+    for (const Simulation::SoleOutline& sole : sim.sole_outlines()) {
+      if (!Terrain::reshapes_ground_within(s.terrain[i], sole.corners)) continue;
+      const Eigen::Vector2d centre = 0.25 * (sole.corners[0] + sole.corners[1] + sole.corners[2] + sole.corners[3]);
+      char where[96];
+      std::snprintf(where, sizeof where, "(x %.2f, y %.2f m)", centre.x(), centre.y());
+      const std::string kind = kKind[static_cast<int>(s.terrain[i].kind)];
+      throw InputError(s.file + ": key 'terrain." + std::to_string(i) + "': the " + kind +
+                       " reaches under the robot's " + name_of(sole.side) + " sole " + where +
+                       ": the robot starts standing on level ground at height 0; move the " + kind +
+                       " clear of its feet");
+    }
+  }
+}
+
 ScenarioResult run_scenario(const Scenario& scenario, const RunConfig& config, const std::string& out_dir,
                             RunObserver* extra_observer, const VideoOptions* video, bool keep_previous) {
   const RobotModel model = load_controller_model(config);
   check_scenario_against_model(scenario, model);
   Simulation sim(config.sim, model);
+  check_scenario_against_simulation(scenario, sim);
   std::unique_ptr<Controller> controller = make_controller(config, model);
   // First, so that a machine that cannot render fails before any output file exists.
   std::unique_ptr<VideoRecorder> video_recorder = video ? std::make_unique<VideoRecorder>(sim, *video) : nullptr;

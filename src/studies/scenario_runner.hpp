@@ -19,6 +19,9 @@ RobotModel load_controller_model(const RunConfig& config);
 std::unique_ptr<Controller> make_controller(const RunConfig& config, const RobotModel& model);
 // Checks names in the scenario that only the model can resolve (fault sensors, pushed bodies).
 void check_scenario_against_model(const Scenario& scenario, const RobotModel& model);
+// Checks the terrain against where the simulation stands the robot at the start: every sole on the
+// level ground, no step, slope or box under it (a robot cannot start with a sole in the ground).
+void check_scenario_against_simulation(const Scenario& scenario, const Simulation& sim);
 
 struct ScenarioResult {
   nlohmann::json summary;

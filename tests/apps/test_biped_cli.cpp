@@ -83,6 +83,8 @@ TEST(BipedRun, BadInputIsExitStatusTwoWithOneLineAndNoFiles) {
   expect_bad_input("run " + nan.string() + o, "key 'commands.0.vx'", out);
   const fs::path fault = scenario("fault", "robot: lola\nduration: 1\nsensors: {faults: [{t: 0, sensor: gps, value: nan}]}\n");
   expect_bad_input("run " + fault.string() + o, "key 'sensors.faults.0.sensor'", out);
+  const fs::path sunk = scenario("sunk", "robot: lola\nduration: 1\nterrain: [{type: step, x: 0.0, height: 0.02}]\n");
+  expect_bad_input("run " + sunk.string() + o, "key 'terrain.0'", out);
   const fs::path good = scenario("good", kShortStand);
   expect_bad_input("run " + good.string() + " --set duration=.nan" + o, "key 'duration'", out);
   expect_bad_input("run " + good.string() + " --set controller.stabiliser=false" + o, "controller.stabiliser", out);

@@ -104,6 +104,27 @@ TEST(Simulation, ResetPlacesTheSolesOnTheGround) {
   EXPECT_GT(sim.standing_pelvis_height(), 0.8);
 }
 
+// Standing at the start, each sole seen from above is its full rectangle (the soles are level), on
+// its own side of the robot, corners in order around it.
+TEST(Simulation, SoleOutlinesAreTheLevelSolesSeenFromAbove) {
+  for (const char* robot : {"lola", "johnnie"}) {
+    const RobotModel model = test::load_model(robot);
+    Simulation sim(params_for(robot), model);
+    const auto outlines = sim.sole_outlines();
+    ASSERT_EQ(outlines.size(), sim.sole_contact().faces().size()) << robot;
+    for (std::size_t i = 0; i < outlines.size(); ++i) {
+      const SoleFace& face = sim.sole_contact().faces()[i];
+      const auto& c = outlines[i].corners;
+      double twice_area = 0.0;  // shoelace formula: positive counter-clockwise
+      for (int k = 0; k < 4; ++k) twice_area += c[k].x() * c[(k + 1) % 4].y() - c[(k + 1) % 4].x() * c[k].y();
+      EXPECT_NEAR(std::abs(twice_area) / 2.0, 4.0 * face.half_u * face.half_v, 1e-3 * face.half_u * face.half_v) << robot;
+      const double y = (c[0] + c[1] + c[2] + c[3]).y() / 4.0;
+      EXPECT_EQ(outlines[i].side, face.side == 0 ? Side::Left : Side::Right);
+      EXPECT_GT(outlines[i].side == Side::Left ? y : -y, 0.03) << robot;
+    }
+  }
+}
+
 // A push on the upper body is applied for its duration and moves the robot.
 TEST(Simulation, PushDisplacesTheUpperBody) {
   const RobotModel model = test::load_model("johnnie");

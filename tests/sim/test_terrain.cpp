@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 
 namespace biped {
@@ -103,6 +104,43 @@ TEST(Terrain, OnlyOverlappingFrictionPatchesConflict) {
   EXPECT_EQ(found[0].second, 2);
   EXPECT_EQ(Terrain::overlaps({a, rectangle(Kind::Friction, {1.3, 0.0}, 1.0, 1.0, 45.0)}).size(), 0u);
   EXPECT_EQ(Terrain::overlaps({a, rectangle(Kind::Friction, {1.25, 0.0}, 0.5, 0.5, 45.0)}).size(), 0u);
+}
+
+// A feature reshapes the ground inside an outline where its far side (a step's, a slope's) or its
+// rectangle (a box's) reaches into it; touching along an edge, a flat feature or friction does not.
+TEST(Terrain, ReshapesGroundWithinAnOutlineWhereItReachesIn) {
+  using Kind = TerrainFeature::Kind;
+  const std::array<Eigen::Vector2d, 4> sole = {Eigen::Vector2d(-0.1, 0.05), Eigen::Vector2d(0.1, 0.05),
+                                               Eigen::Vector2d(0.1, 0.15), Eigen::Vector2d(-0.1, 0.15)};
+  EXPECT_TRUE(Terrain::reshapes_ground_within(TerrainFeature::step(0.05, 0.02), sole));
+  EXPECT_TRUE(Terrain::reshapes_ground_within(TerrainFeature::step(-0.5, -0.02), sole));
+  EXPECT_FALSE(Terrain::reshapes_ground_within(TerrainFeature::step(0.1, 0.02), sole)) << "touching";
+  EXPECT_FALSE(Terrain::reshapes_ground_within(TerrainFeature::step(0.05, 0.0), sole)) << "no step";
+  EXPECT_FALSE(Terrain::reshapes_ground_within(TerrainFeature::slope(0.3, 5.0, 2.0), sole));
+  // A slope starting 1.4 m ahead but rising sideways at 100°: its start line passes y = −0.25 at
+  // x = 0, so the sole stands beyond it; at 80° the line passes y = +0.25 and the sole is short of it.
+  TerrainFeature side_slope = TerrainFeature::slope(1.4, 3.0, 2.0);
+  side_slope.heading_deg = 100.0;
+  EXPECT_TRUE(Terrain::reshapes_ground_within(side_slope, sole));
+  side_slope.heading_deg = 80.0;
+  EXPECT_FALSE(Terrain::reshapes_ground_within(side_slope, sole));
+  side_slope.at.x() = 0.6;  // the line passes y = 0.11 at x = 0: through the sole
+  EXPECT_TRUE(Terrain::reshapes_ground_within(side_slope, sole));
+
+  TerrainFeature box = rectangle(Kind::Box, {0.2, 0.1}, 0.2, 0.2, 0.0);
+  box.height = 0.03;
+  EXPECT_FALSE(Terrain::reshapes_ground_within(box, sole)) << "touching at x = 0.1";
+  box.at.x() = 0.19;
+  EXPECT_TRUE(Terrain::reshapes_ground_within(box, sole));
+  box.height = 0.0;
+  EXPECT_FALSE(Terrain::reshapes_ground_within(box, sole));
+  EXPECT_FALSE(Terrain::reshapes_ground_within(rectangle(Kind::Friction, {0.0, 0.1}, 1.0, 1.0, 0.0), sole));
+  // Turned 45°: the square around it overlaps the sole, the box itself does not, until it comes closer.
+  TerrainFeature turned = rectangle(Kind::Box, {0.2, 0.25}, 0.2, 0.2, 45.0);
+  turned.height = 0.03;
+  EXPECT_FALSE(Terrain::reshapes_ground_within(turned, sole));
+  turned.at = {0.15, 0.2};
+  EXPECT_TRUE(Terrain::reshapes_ground_within(turned, sole));
 }
 
 // The height bound near a box: never below the height within the radius, around raised and sunk boxes.

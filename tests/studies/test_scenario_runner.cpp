@@ -108,6 +108,30 @@ TEST(CheckScenarioAgainstModel, RejectsAnUnknownPushBodyNamingFileAndKey) {
   EXPECT_EQ(message.find('\n'), std::string::npos) << message;
 }
 
+// Terrain under the robot's starting soles is refused (it would start with a sole in the ground),
+// naming the feature; terrain clear of them, friction patches under them, are fine.
+TEST(CheckScenarioAgainstSimulation, RejectsTerrainUnderTheStartingSolesNamingFileAndKey) {
+  const RobotModel model = test::load_model("lola");
+  auto message_for = [&](const std::string& terrain) {
+    const Scenario s = load_scenario(kWalk, {"terrain=" + terrain});
+    const RunConfig config = make_run_config(s);
+    const Simulation sim(config.sim, model);
+    return input_error_of([&] { check_scenario_against_simulation(s, sim); });
+  };
+  EXPECT_EQ(message_for("[{type: step, x: 0.3, height: 0.02}, {type: friction, x: 0, length: 2, width: 2, mu: 0.5},"
+                        " {type: slope, x: 1.4, heading_deg: 80, angle_deg: 3, length: 1}]"),
+            "");
+  const std::string message =
+      message_for("[{type: step, x: 1.0, height: 0.02}, {type: slope, x: 1.4, heading_deg: 100, angle_deg: 3, length: 1}]");
+  EXPECT_NE(message.find(kWalk), std::string::npos) << message;
+  EXPECT_NE(message.find("terrain.1"), std::string::npos) << message;
+  EXPECT_NE(message.find("slope"), std::string::npos) << message;
+  EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+  EXPECT_NE(message_for("[{type: box, x: 0.05, y: -0.1, length: 0.2, width: 0.1, height: 0.01}]").find("right sole"),
+            std::string::npos);
+  EXPECT_NE(message_for("[{type: step, x: -0.05, height: -0.02}]").find("terrain.0"), std::string::npos);
+}
+
 TEST(RunScenario, WritesSummaryLogAndReportAndNoTemporaryFile) {
   const fs::path dir = test::fresh_dir("scenario-runner") / "out";  // created by the run
   const Scenario s = load_scenario(kWalk, {"duration=1"});
@@ -147,6 +171,9 @@ TEST(RunScenario, BadInputCreatesNoOutput) {
   const Scenario s = load_scenario(kWalk, {"duration=1", "disturbances=[{type: push, t: 0.5, body: nowhere, force: [1, 0, 0]}]"});
   const RunConfig config = make_run_config(s);
   EXPECT_THROW(run_scenario(s, config, dir.string()), InputError);
+  EXPECT_TRUE(fs::is_empty(parent));
+  const Scenario sunk = load_scenario(kWalk, {"duration=1", "terrain=[{type: step, x: 0.0, height: 0.02}]"});
+  EXPECT_THROW(run_scenario(sunk, make_run_config(sunk), dir.string()), InputError);
   EXPECT_TRUE(fs::is_empty(parent));
   fs::remove_all(parent);
 }
