@@ -135,7 +135,9 @@ const ParameterTable<WeightShiftParams> kWeightShiftParameters = {
 };
 
 const ParameterTable<CommandLimits> kCommandLimitParameters = {
-    {"vx_min", &CommandLimits::vx_min, "m/s", kFinite, "feasible commands (beyond them saturated): slowest forward speed"},
+    {"vx_min", &CommandLimits::vx_min, "m/s",
+     Check{Check::Lower::None, 0.0, true, "a zero command must stay standing, not be saturated to walking"},
+     "feasible commands (beyond them saturated): slowest forward speed (backward: negative)"},
     {"vx_max", &CommandLimits::vx_max, "m/s", kNonNegative,
      "fastest forward speed (a step table lowers it to its fastest row with min_zmp_margin, unless given)"},
     {"min_zmp_margin", &CommandLimits::min_zmp_margin, "m", kNonNegative,

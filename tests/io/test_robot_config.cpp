@@ -139,6 +139,9 @@ TEST(RobotConfig, SingleAndCrossKeyChecksKeepTheirMessages) {
             "test.yaml:1: key 'simulation.control_period': must be a whole multiple of simulation.timestep");
   EXPECT_EQ(config_error("controller", "{limits: {vx_max: -1}}"),
             "test.yaml:1: key 'controller.limits.vx_max': must not be negative (got -1)");
+  EXPECT_EQ(config_error("controller", "{limits: {vx_min: 0.2}}"),
+            "test.yaml:1: key 'controller.limits.vx_min': must be at most 0 (a zero command must stay standing, not be "
+            "saturated to walking)");
   EXPECT_EQ(config_error("controller", "{limits: {lateral_vx_share: 1.5}}"),
             "test.yaml:1: key 'controller.limits.lateral_vx_share': must be at most 1 (a share)");
   EXPECT_EQ(config_error("controller", "{limits: {min_zmp_margin: -0.01}}"),
