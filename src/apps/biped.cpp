@@ -1,7 +1,9 @@
 // The `biped` command line: run scenarios (and, as the project grows, benchmarks and experiments).
 #include <CLI/CLI.hpp>
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <exception>
 #include <filesystem>
 #include <iostream>
@@ -23,6 +25,7 @@
 #include "studies/push_test.hpp"
 #include "studies/robot_check.hpp"
 #include "studies/scenario_runner.hpp"
+#include "sim/simulation.hpp"
 #include "studies/speed_sweep.hpp"
 #include "studies/step_table_search.hpp"
 
@@ -30,6 +33,19 @@ namespace {
 
 constexpr int kExitBadInput = 2;
 constexpr int kExitInternal = 1;
+
+// CLI11 reads "nan" and "inf" as numbers, and a NaN passes its ranges: every real-valued option
+// is checked with this first.
+const CLI::Validator kFiniteNumber(
+    [](std::string& input) {
+      char* end = nullptr;
+      const double value = std::strtod(input.c_str(), &end);
+      if (end == input.c_str() || *end != '\0' || !std::isfinite(value)) {
+        return "must be a finite number (got " + input + ")";
+      }
+      return std::string();
+    },
+    "NUMBER");
 
 int run_command(const std::string& scenario_path, const std::string& out_option,
                 const std::vector<std::string>& overrides, biped::VideoOptions video, const std::string& video_size) {
@@ -333,7 +349,7 @@ int robot_import_command(const std::string& urdf, const std::string& out, const 
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"biped: real-time walking control with hybrid position/force control (LOLA, JOHNNIE)"};
+  CLI::App app{"biped: real-time walking control with hybrid position/force control (LOLA, JOHNNIE, JVRC-1 or a robot file of your own)"};
   app.require_subcommand(1);
 
   std::string scenario_path, out_dir;
@@ -346,7 +362,9 @@ int main(int argc, char** argv) {
   biped::VideoOptions video;
   std::string video_size;
   run->add_option("--video", video.path, "Also render the run offscreen to this .mp4 (needs ffmpeg)")->type_name("FILE.mp4");
-  run->add_option("--video-fps", video.fps, "Video frames per second of simulated time")->capture_default_str();
+  run->add_option("--video-fps", video.fps, "Video frames per second of simulated time")
+      ->capture_default_str()
+      ->check(kFiniteNumber);
   run->add_option("--video-size", video_size, "Video size in pixels (default 640x480)")->type_name("WxH");
 
   std::string robot, table_out;
@@ -359,7 +377,7 @@ int main(int argc, char** argv) {
   CLI::App* bench = app.add_subcommand("bench", "Time the controller cycle on a walking trajectory (and eq. 21 with explicit SVD)");
   bench->add_option("--robot", bench_robot, "Robot name")->capture_default_str();
   bench->add_option("--json", bench_json, "Write the figures as JSON");
-  bench->add_option("--duration", bench_duration, "Simulated seconds")->capture_default_str()->check(CLI::Range(1.0, 600.0));
+  bench->add_option("--duration", bench_duration, "Simulated seconds")->capture_default_str()->check(kFiniteNumber)->check(CLI::Range(1.0, 600.0));
 
   std::string push_scenario;
   std::vector<std::string> push_overrides;
@@ -369,28 +387,31 @@ int main(int argc, char** argv) {
   push->add_option("scenario", push_scenario, "Scenario file (YAML)")->required();
   CLI::Option* named = push->add_option("--direction", push_options.direction, "forward | backward | left | right");
   CLI::Option* angle =
-      push->add_option("--direction-deg", push_direction_deg, "Direction in the robot's heading frame (0 forward, 90 left)");
+      push->add_option("--direction-deg", push_direction_deg, "Direction in the robot's heading frame (0 forward, 90 left)")->check(kFiniteNumber);
   named->excludes(angle);
   push->add_option("--phase", push_options.phase, "Share of the single support at the push (0..1)")
       ->capture_default_str()
+      ->check(kFiniteNumber)
       ->check(CLI::Range(0.0, 1.0));
   push->add_option("--earliest", push_options.earliest, "Push in the first single support after this time [s]")
       ->capture_default_str()
+      ->check(kFiniteNumber)
       ->check(CLI::NonNegativeNumber);
   push->add_option("--set", push_overrides, "Override a scenario key")->type_name("KEY=VALUE");
   double push_at_time = 0.0;
   push->add_option("--at-time", push_at_time, "Push at this time [s] instead of a gait phase (a robot that stands)")
-      ->excludes("--phase");
+      ->excludes("--phase")
+      ->check(kFiniteNumber);
 
   std::string sweep_scenario, sweep_json;
   std::vector<std::string> sweep_overrides;
   biped::SpeedSweepOptions sweep_options;
   CLI::App* sweep = app.add_subcommand("speed-sweep", "Straight walks at rising speeds: the highest speed without a fall");
   sweep->add_option("scenario", sweep_scenario, "Scenario file (YAML): robot and parameters; its commands are replaced")->required();
-  sweep->add_option("--from", sweep_options.from, "First commanded speed [m/s]")->capture_default_str();
-  sweep->add_option("--to", sweep_options.to, "Last commanded speed [m/s]")->capture_default_str();
-  sweep->add_option("--step", sweep_options.step, "Speed increment [m/s]")->capture_default_str();
-  sweep->add_option("--hold", sweep_options.hold, "Seconds walked at each speed")->capture_default_str()->check(CLI::Range(1.0, 600.0));
+  sweep->add_option("--from", sweep_options.from, "First commanded speed [m/s]")->capture_default_str()->check(kFiniteNumber);
+  sweep->add_option("--to", sweep_options.to, "Last commanded speed [m/s]")->capture_default_str()->check(kFiniteNumber);
+  sweep->add_option("--step", sweep_options.step, "Speed increment [m/s]")->capture_default_str()->check(kFiniteNumber);
+  sweep->add_option("--hold", sweep_options.hold, "Seconds walked at each speed")->capture_default_str()->check(kFiniteNumber)->check(CLI::Range(1.0, 600.0));
   sweep->add_option("--json", sweep_json, "Write the results as JSON");
   sweep->add_option("--set", sweep_overrides, "Override a scenario key")->type_name("KEY=VALUE");
 
@@ -413,8 +434,9 @@ int main(int argc, char** argv) {
   push_map->add_option("--directions", map_options.directions, "Push directions, evenly spaced")->capture_default_str();
   push_map->add_option("--phases", map_options.phases, "Single-support phases")->capture_default_str();
   push_map->add_option("--earliest", map_options.test.earliest, "Push in the first single support after this time [s] (standing: at it)")
-      ->capture_default_str();
-  push_map->add_option("--max-impulse", map_options.test.max_impulse, "Largest impulse tried [N·s]")->capture_default_str();
+      ->capture_default_str()
+      ->check(kFiniteNumber);
+  push_map->add_option("--max-impulse", map_options.test.max_impulse, "Largest impulse tried [N·s]")->capture_default_str()->check(kFiniteNumber);
   push_map->add_option("--jobs", map_jobs, "Worker threads (default: every core)")->check(CLI::Range(1, 4096));
   push_map->add_option("--set", map_overrides, "Override a scenario key")->type_name("KEY=VALUE");
 
@@ -446,6 +468,7 @@ int main(int argc, char** argv) {
   robot_check->add_option("robot", check_robot_file, "Robot file (config/robots/NAME.yaml) or robot name")->required();
   robot_check->add_option("--stand-time", check_stand_duration, "Seconds standing in simulation")
       ->capture_default_str()
+      ->check(kFiniteNumber)
       ->check(CLI::Range(0.5, 60.0));
 
   std::string import_urdf, import_out;
@@ -507,6 +530,9 @@ int main(int argc, char** argv) {
     std::cerr << "error: " << e.what() << '\n';
     return kExitBadInput;
   } catch (const biped::VideoError& e) {
+    std::cerr << "error: " << e.what() << '\n';
+    return kExitInternal;
+  } catch (const biped::SimulationDiverged& e) {
     std::cerr << "error: " << e.what() << '\n';
     return kExitInternal;
   } catch (const std::exception& e) {

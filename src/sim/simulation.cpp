@@ -2,7 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <cstring>
 #include <limits>
+#include <mutex>
 
 namespace biped {
 namespace {
@@ -94,6 +97,14 @@ Simulation::Simulation(const SimulationParams& params, const RobotModel& control
       pushes_(plant_, params.pushes),
       plant_setpoint_(plant_.stand_pose()),
       fall_detector_(plant_, terrain_, 1.0) {
+  // MuJoCo's default handler appends its warnings to MUJOCO_LOG.TXT in the working directory. A
+  // diverged state is reported by advance() itself; the other warnings go to stderr.
+  static std::once_flag warning_handler;
+  std::call_once(warning_handler, [] {
+    mju_user_warning = [](const char* message) {
+      if (std::strstr(message, "Nan, Inf or huge value") == nullptr) std::fprintf(stderr, "MuJoCo: %s\n", message);
+    };
+  });
   const double ratio = params.control_period / params.world.timestep;
   steps_per_period_ = static_cast<int>(std::lround(ratio));
   if (steps_per_period_ < 1 || std::abs(ratio - steps_per_period_) > 1e-9) {
@@ -161,7 +172,19 @@ void Simulation::advance() {
     pushes_.apply(d, gait_);
     sole_contact_.apply(m, d);
     drives_.apply(m, d, m->opt.timestep);
+    const double t = d->time;
     mj_step2(m, d);
+    // MuJoCo resets a diverged state to the model's rest pose and counts a warning; going on would
+    // simulate a robot that jumped back to the start.
+    for (const int w : {mjWARN_BADQPOS, mjWARN_BADQVEL, mjWARN_BADQACC}) {
+      if (d->warning[w].number > 0) {
+        char text[160];
+        std::snprintf(text, sizeof text,
+                      "the simulation diverged at t = %.3f s (MuJoCo found NaN, Inf or a huge value in the "
+                      "state): a push, terrain or model error beyond the physical?", t);
+        throw SimulationDiverged(text);
+      }
+    }
   }
   if (!fall_reason_) {
     fall_reason_ = fall_detector_.check(d);

@@ -7,6 +7,7 @@
 #include <array>
 #include <map>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -47,6 +48,13 @@ struct SimulationParams {
   bool collision_gate = true;
 };
 
+// The physics blew up (MuJoCo found NaN, Inf or a huge value in the state and reset it): the run
+// cannot go on. Usually a push, terrain or model error far beyond anything physical.
+class SimulationDiverged : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
 class Simulation {
  public:
   // Builds the world; `controller_model` fixes the joint order of SensorData and JointCommand.
@@ -60,6 +68,7 @@ class Simulation {
   // New joint set-points (controller order), held until the next command.
   void command(const JointCommand& setpoints);
   // Advances one control period: physics steps with the joint drives evaluated at every step.
+  // Throws SimulationDiverged if the physics blew up.
   void advance();
 
   double time() const { return data_->time; }

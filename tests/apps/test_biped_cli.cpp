@@ -95,6 +95,34 @@ TEST(BipedRun, BadInputIsExitStatusTwoWithOneLineAndNoFiles) {
   EXPECT_FALSE(fs::exists(out));
 }
 
+// CLI11 reads "nan" and "inf" as numbers and a NaN passes its ranges: every real-valued option of
+// every command is refused when it is not finite (a NaN push direction once hung push-test).
+TEST(BipedCli, NonFiniteNumbersInOptionsAreBadInput) {
+  const fs::path out = work_dir() / "nonfinite-out";
+  const std::string good = scenario("good", kShortStand).string();
+  expect_bad_input("push-test " + good + " --direction-deg nan", "--direction-deg", out);
+  expect_bad_input("push-test " + good + " --direction left --phase nan", "--phase", out);
+  expect_bad_input("push-map " + good + " --out " + out.string() + " --earliest inf", "--earliest", out);
+  expect_bad_input("speed-sweep " + good + " --from nan", "--from", out);
+  expect_bad_input("bench --duration nan", "--duration", out);
+  expect_bad_input("run " + good + " --out " + out.string() + " --video-fps nan", "--video-fps", out);
+  EXPECT_FALSE(fs::exists(out));
+}
+
+// A push far beyond the physical blows the physics up: the run ends with one line saying so
+// (status 1, a failed run, not bad input the reader could see) and writes nothing.
+TEST(BipedRun, DivergedSimulationIsOneLineAndNoFiles) {
+  const fs::path out = work_dir() / "diverged-out";
+  const fs::path blown = scenario("blown", std::string(kShortStand) +
+                                               "disturbances: [{type: push, t: 0.1, direction_deg: 0, impulse_Ns: 1e300, duration: 0.1}]\n");
+  const Outcome o = biped("run " + blown.string() + " --out " + out.string());
+  EXPECT_EQ(o.status, 1) << o.err;
+  EXPECT_EQ(lines(o.err), 1) << o.err;
+  EXPECT_NE(o.err.find("diverged at t = 0.1"), std::string::npos) << o.err;
+  EXPECT_FALSE(fs::exists(out / "log.csv"));
+  EXPECT_FALSE(fs::exists(out / "summary.json"));
+}
+
 TEST(BipedRun, WritesSummaryAndLogWithTheContractKeys) {
   const fs::path out = work_dir() / "good-out";
   const Outcome o = biped("run " + scenario("good", kShortStand).string() + " --out " + out.string());

@@ -144,6 +144,26 @@ TEST(Simulation, PushDisplacesTheUpperBody) {
   EXPECT_GT(pushed.data()->xpos[3 * ub] - quiet.data()->xpos[3 * ub], 0.002);
 }
 
+// A push far beyond the physical blows the physics up; MuJoCo would reset the robot to its rest
+// pose and the run would go on as if nothing happened. The simulation says so instead.
+TEST(Simulation, DivergedPhysicsIsAnErrorNotARestart) {
+  const RobotModel model = test::load_model("johnnie");
+  SimulationParams p = params_for("johnnie");
+  p.pushes.push_back({0.05, 0.01, "upper_body", Eigen::Vector3d(1e300, 0.0, 0.0)});
+  Simulation sim(p, model);
+  JointCommand hold(model.num_joints());
+  hold.position = model.stand_pose();
+  try {
+    for (int i = 0; i < 100; ++i) {
+      sim.command(hold);
+      sim.advance();
+    }
+    FAIL() << "no SimulationDiverged";
+  } catch (const SimulationDiverged& e) {
+    EXPECT_NE(std::string(e.what()).find("diverged at t = 0.05"), std::string::npos) << e.what();
+  }
+}
+
 // Model error: the simulated upper body is heavier than the controller's model says.
 TEST(Simulation, ModelErrorChangesTheSimulatedMassOnly) {
   const RobotModel model = test::load_model("lola");
