@@ -178,10 +178,10 @@ void Simulation::advance() {
     // simulate a robot that jumped back to the start.
     for (const int w : {mjWARN_BADQPOS, mjWARN_BADQVEL, mjWARN_BADQACC}) {
       if (d->warning[w].number > 0) {
-        char text[160];
+        char text[256];
         std::snprintf(text, sizeof text,
                       "the simulation diverged at t = %.3f s (MuJoCo found NaN, Inf or a huge value in the "
-                      "state): a push, terrain or model error beyond the physical?", t);
+                      "state): a push, terrain, model error or simulation parameter beyond the physical?", t);
         throw SimulationDiverged(text);
       }
     }

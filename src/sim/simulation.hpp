@@ -49,7 +49,8 @@ struct SimulationParams {
 };
 
 // The physics blew up (MuJoCo found NaN, Inf or a huge value in the state and reset it): the run
-// cannot go on. Usually a push, terrain or model error far beyond anything physical.
+// cannot go on. Usually a push, terrain, model error or simulation parameter far beyond anything
+// physical (a sole stiffness of 10¹⁵ N/m diverges in the first steps).
 class SimulationDiverged : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
