@@ -24,11 +24,11 @@ void TerrainAdaptation::reset() {
 void TerrainAdaptation::follow_plan(Foot& foot, const Foot& other, const FootReference& plan,
                                     double ground_above_command, double dt, bool other_trusted) {
   foot.settling = false;
-  foot.tilt_rate_sign = 0.0;
-  foot.cop_error = 0.0;
+  foot.search_direction.setZero();
+  foot.cop_error.setZero();
   foot.measuring = foot.measured = false;
   if (plan.in_contact) {
-    foot.tilt_rate = 0.0;
+    foot.tilt_rate.setZero();
     foot.slope_rate.setZero();
     if (foot.phase == Phase::Swing || foot.phase == Phase::Latched) {
       foot.phase = Phase::Searching;
@@ -59,33 +59,52 @@ void TerrainAdaptation::follow_plan(Foot& foot, const Foot& other, const FootRef
 }
 
 void TerrainAdaptation::settle(Foot& foot, int k, double dt, const Wrench& desired, bool loading) {
-  foot.tilt_rate = 0.0;
+  foot.tilt_rate.setZero();
   if (!foot.settling) return;
   if (foot.filtered_force <= params_.contact_force || desired.force.z() <= params_.contact_force) return;
-  // T_y = −x_CoP F_z in the sensor frame. The error is filtered: landing on flat ground moves the
-  // centre of pressure for a few tens of milliseconds, a missing support keeps it away.
-  const double cop = -foot.filtered_torque / foot.filtered_force;
-  const double error = -desired.torque.y() / desired.force.z() - cop;
+  // Sensor frame: T_x = y_CoP F_z, T_y = −x_CoP F_z. The error is filtered: landing on flat ground
+  // moves the centre of pressure for a few tens of milliseconds, a missing support keeps it away.
+  const Eigen::Vector2d cop(-foot.filtered_torque / foot.filtered_force, foot.filtered_roll_torque / foot.filtered_force);
+  Eigen::Vector2d error(-desired.torque.y() / desired.force.z() - cop.x(), desired.torque.x() / desired.force.z() - cop.y());
+  // Sideways only where this foothold's ground differs from the other's (a step found): on level
+  // ground a centre of pressure held at the sole's side is a push, and rolling the foot about that
+  // edge tipped LOLA over it.
+  const bool at_a_step = std::abs(foot.ground - feet_[1 - k].ground) > kStepForRoll;
+  if (!params_.tilt_search_roll || !at_a_step) error.y() = 0.0;
   foot.cop_error += dt / (params_.cop_filter_time + dt) * (error - foot.cop_error);
-  // A turn once started goes on until the error is well inside the band: stopping at its edge
-  // leaves the sole as unsupported as it was when the turn began.
-  const double band = foot.tilt_rate_sign == 0.0 ? params_.cop_band : kBandToStop * params_.cop_band;
-  const double direction = foot.cop_error > band ? 1.0 : foot.cop_error < -band ? -1.0 : 0.0;
-  if (direction == 0.0) {
-    // Found, once the load has come over to this foot (the other one has left the ground, or the
-    // plan no longer shifts load to it, as when standing after the last step): the tilt holds for
-    // this stance.
-    if (!loading) foot.settling = false;
+  const bool started = !foot.search_direction.isZero();
+  if (!started) {
+    if (foot.cop_error.norm() <= params_.cop_band) {
+      // Found, once the load has come over to this foot (the other one has left the ground, or the
+      // plan no longer shifts load to it, as when standing after the last step): the tilt holds
+      // for this stance.
+      if (!loading) foot.settling = false;
+      return;
+    }
+    // Turning starts about the present centre of pressure: the edge of the support the sole has.
+    foot.search_direction = foot.cop_error.normalized();
+    foot.pivot = Eigen::Vector2d(std::clamp(cop.x(), heel_x_[k], toe_x_[k]), std::clamp(cop.y(), right_y_[k], left_y_[k]));
+  } else {
+    // A turn once started goes on until the error along it is well inside the band: stopping at
+    // the band's edge leaves the sole as unsupported as it was when the turn began.
+    const double along = foot.cop_error.dot(foot.search_direction);
+    if (along < -kBandToStop * params_.cop_band) {
+      foot.settling = false;  // a reversal: no further search in this stance
+      return;
+    }
+    if (along <= kBandToStop * params_.cop_band) {
+      if (!loading) foot.settling = false;
+      return;
+    }
+  }
+  // Lowering the sole along d (x, y): pitch toes down by d_x, roll (left edge up) by −d_y.
+  const Eigen::Vector2d turn(-foot.search_direction.y(), foot.search_direction.x());
+  Eigen::Vector2d tilt = foot.tilt + params_.tilt_search_speed * dt * turn;
+  if (tilt.norm() > params_.max_tilt) tilt *= params_.max_tilt / tilt.norm();
+  if (tilt == foot.tilt) {
+    foot.settling = false;  // the bound: no further search in this stance
     return;
   }
-  // Turning starts about the present centre of pressure: the edge of the support the sole has.
-  if (foot.tilt_rate_sign == 0.0) foot.pivot = std::clamp(cop, heel_x_[k], toe_x_[k]);
-  const double tilt = std::clamp(foot.tilt + direction * params_.tilt_search_speed * dt, -params_.max_tilt, params_.max_tilt);
-  if (tilt == foot.tilt || (foot.tilt_rate_sign != 0.0 && direction != foot.tilt_rate_sign)) {
-    foot.settling = false;  // the bound, or a reversal: no further search in this stance
-    return;
-  }
-  foot.tilt_rate_sign = direction;
   foot.tilt_rate = (tilt - foot.tilt) / dt;
   foot.tilt = tilt;
 }
@@ -100,7 +119,7 @@ void TerrainAdaptation::measure_slope(Foot& foot, int k, double yaw, const Eigen
     return;  // on an edge the sole may be rolling off: its orientation is not the ground's
   }
   // The sole's (roll, pitch) as commanded: the slope it took, its tilt, force control's turn.
-  const Eigen::Vector2d orientation = foot.slope + Eigen::Vector2d(0.0, foot.tilt) + turn_above_command;
+  const Eigen::Vector2d orientation = foot.slope + foot.tilt + turn_above_command;
   const Eigen::Vector2d along_foot(-std::tan(orientation.y()), std::tan(orientation.x()));
   const double c = std::cos(yaw), s = std::sin(yaw);
   Eigen::Vector2d gradient(c * along_foot.x() - s * along_foot.y(), s * along_foot.x() + c * along_foot.y());
@@ -186,8 +205,8 @@ void TerrainAdaptation::step(double dt, const PatternSample& s, const std::array
     if (!plan.in_contact) {
       if (foot.phase == Phase::Stance) foot.phase = Phase::Swing;
       foot.settling = true;
-      foot.tilt_rate_sign = 0.0;
-      foot.cop_error = 0.0;
+      foot.search_direction.setZero();
+      foot.cop_error.setZero();
       return_tilt(foot, dt);
       if (foot.phase == Phase::Swing) {
         // Aim at the ground the stance foot stands on. A higher target is reached while the foot

@@ -8,10 +8,13 @@
 //    the ground on one edge and bounced off) before it has found its support while the plan shifts
 //    load onto it, descends at a search speed until it does;
 //  - partial support: a foot that has just touched down and cannot put its centre of pressure where
-//    the stabilizer asks (the measured one stays more than a band behind or ahead of it, e.g. on a
-//    step edge with the front of the sole over the lower level) turns about its present centre of
-//    pressure towards the desired one at a search speed until the sole finds the ground there; the
-//    tilt holds for that stance and returns to zero in the swing;
+//    the stabilizer asks (the measured one stays more than a band from it, e.g. on a step edge with
+//    the front of the sole over the lower level) turns about its present centre of pressure
+//    towards the desired one at a search speed until the sole finds the ground there; the tilt
+//    holds for that stance and returns to zero in the swing. Across an oblique edge the sole's
+//    unsupported part lies behind and to one side: at a step found (the footholds' heights
+//    differ) the turn lowers it in that direction, pitch and roll, elsewhere about the foot's
+//    lateral axis only;
 //  - the foot's height at touchdown is the ground height of that foothold; the next swing foot aims
 //    at the ground height of the stance foot, and the CoM height follows the mean ground height of
 //    the footholds, so the legs keep their planned length;
@@ -73,7 +76,12 @@ struct TerrainAdaptationParams {
   double cop_band = 0.04;         // [m] desired centre of pressure this far from the measured one at touchdown: the sole lacks support there
   double cop_filter_time = 0.03;  // [s] first-order filter of that distance
   double tilt_search_speed = 0.5; // [rad/s] turn of a foot in edge contact about that edge
-  double max_tilt = 0.15;         // [rad] bound of a foot's tilt
+  double max_tilt = 0.15;         // [rad] bound of a foot's tilt (the norm of its roll and pitch)
+  // The partial support's turn also about the foot's forward axis: the centre of pressure's error
+  // sideways counts as well as along the foot (an edge crossed at an angle), where the foothold's
+  // ground differs from the other foot's by more than a centimetre (a step found). Off: about the
+  // lateral axis only, the error along the foot alone (edges across the walking direction).
+  bool tilt_search_roll = true;
   bool predict_slope = true;      // downhill, the swing foot takes the stance foot's ground slope (above)
   // Elsewhere (level or uphill) the swing foot still takes that slope's roll about its own forward
   // axis (a side slope), not its pitch or height.
@@ -126,16 +134,16 @@ class TerrainAdaptation {
   void level_standing_feet(double dt, const std::array<double, 2>& measured_ground);
 
   // Offsets of the planned heights [m] and their rates [m/s]: per foot (by Side) and of the CoM.
-  // A tilted foot's ankle moves with the tilt so that the edge it turned about stays in place.
-  double foot_offset(int k) const { return feet_[k].offset + feet_[k].pivot * feet_[k].tilt; }
-  double foot_offset_rate(int k) const { return feet_[k].rate + feet_[k].pivot * feet_[k].tilt_rate; }
+  // A tilted foot's ankle moves with the tilt so that the point it turned about stays in place.
+  double foot_offset(int k) const { return feet_[k].offset + lift_of_ankle(feet_[k], feet_[k].tilt); }
+  double foot_offset_rate(int k) const { return feet_[k].rate + lift_of_ankle(feet_[k], feet_[k].tilt_rate); }
   // Tilt of each foot about its lateral axis (positive: toes down) [rad] and its rate [rad/s]:
   // the slope it takes and its turn about an edge.
-  double foot_tilt(int k) const { return feet_[k].tilt + feet_[k].slope.y(); }
-  double foot_tilt_rate(int k) const { return feet_[k].tilt_rate + feet_[k].slope_rate.y(); }
+  double foot_tilt(int k) const { return feet_[k].tilt.y() + feet_[k].slope.y(); }
+  double foot_tilt_rate(int k) const { return feet_[k].tilt_rate.y() + feet_[k].slope_rate.y(); }
   // Roll of each foot about its forward axis (positive: its left edge up) [rad] and its rate [rad/s].
-  double foot_roll(int k) const { return feet_[k].slope.x(); }
-  double foot_roll_rate(int k) const { return feet_[k].slope_rate.x(); }
+  double foot_roll(int k) const { return feet_[k].tilt.x() + feet_[k].slope.x(); }
+  double foot_roll_rate(int k) const { return feet_[k].tilt_rate.x() + feet_[k].slope_rate.x(); }
   // The ground's gradient (∂z/∂x, ∂z/∂y, world frame) under each foot's current or last foothold,
   // where its sole last lay flat.
   const Eigen::Vector2d& ground_gradient(int k) const { return feet_[k].ground_gradient; }
@@ -164,10 +172,13 @@ class TerrainAdaptation {
     double planned_ground = 0.0;  // the plan's height of this foot standing (its swing clearance is above it)
     double filtered_torque = 0.0;  // T_y, filtered like the force
     bool settling = false;         // from touchdown until the sole has found its support
-    double tilt = 0.0, tilt_rate = 0.0;
-    double pivot = 0.0;            // x of the edge the foot turned about (sensor frame) [m]
-    double tilt_rate_sign = 0.0;   // direction of this stance's tilt search (0: not started)
-    double cop_error = 0.0;        // desired − measured x of the centre of pressure, filtered [m]
+    // The partial support's turn (roll, pitch) [rad] and its rate [rad/s], about `pivot`, the
+    // (x, y) of the centre of pressure where it began (sensor frame) [m].
+    Eigen::Vector2d tilt = Eigen::Vector2d::Zero(), tilt_rate = Eigen::Vector2d::Zero();
+    Eigen::Vector2d pivot = Eigen::Vector2d::Zero();
+    // The direction (x, y, sensor frame) in which this stance's turn lowers the sole (zero: not started).
+    Eigen::Vector2d search_direction = Eigen::Vector2d::Zero();
+    Eigen::Vector2d cop_error = Eigen::Vector2d::Zero();  // desired − measured centre of pressure (x, y), filtered [m]
     double load_share = 0.0;       // the plan's share of the load, last cycle
     double filtered_roll_torque = 0.0;  // T_x, filtered like the force
     Eigen::Vector2d slope = Eigen::Vector2d::Zero(), slope_rate = Eigen::Vector2d::Zero();  // (roll, pitch) taken
@@ -183,6 +194,10 @@ class TerrainAdaptation {
   // Edge contact at touchdown: the tilt search, and the tilt's return to zero in the swing.
   void settle(Foot& foot, int k, double dt, const Wrench& desired, bool loading);
   void return_tilt(Foot& foot, double dt);
+  // How far the ankle rises as the foot turns by `turn` (roll, pitch) about its pivot [m].
+  static double lift_of_ankle(const Foot& foot, const Eigen::Vector2d& turn) {
+    return foot.pivot.x() * turn.y() - foot.pivot.y() * turn.x();
+  }
   // Standing: the ground's slope from the foot's orientation, while its sole lies flat.
   void measure_slope(Foot& foot, int k, double yaw, const Eigen::Vector2d& turn_above_command);
   // In the air: the slope the foot turns to, and the ground height it aims at (`target`, the stance
@@ -204,6 +219,9 @@ class TerrainAdaptation {
   static constexpr double kSwingSpeed = 0.5;  // [m/s] a swinging foot's offset moves to its target at most this fast
 
   static constexpr double kBandToStop = 0.5;  // share of cop_band inside which a started turn stops
+  // [m] the footholds' heights differ by more than this: a sole may straddle an edge, and the
+  // partial support's turn may roll it (tilt_search_roll)
+  static constexpr double kStepForRoll = 0.01;
   static constexpr double kTiltReturnTime = 0.05;  // [s] time constant of the tilt's return in the swing
 
   TerrainAdaptationParams params_;

@@ -296,6 +296,8 @@ const ParameterTable<TerrainAdaptationParams> kTerrainAdaptationParameters = {
     {"tilt_search_speed", &TerrainAdaptationParams::tilt_search_speed, "rad/s", kPositive,
      "partial support: turn rate of the foot about its edge"},
     {"max_tilt", &TerrainAdaptationParams::max_tilt, "rad", kPositive, "partial support: bound of a foot's tilt"},
+    {"tilt_search_roll", &TerrainAdaptationParams::tilt_search_roll, "", {},
+     "partial support: the foot also rolls, towards the desired centre of pressure sideways (an edge crossed at an angle)"},
     {"predict_slope", &TerrainAdaptationParams::predict_slope, "", {},
      "downhill: the swing foot takes the slope the stance foot stands on"},
     {"take_side_slope", &TerrainAdaptationParams::take_side_slope, "", {},
