@@ -72,30 +72,26 @@ void TerrainAdaptation::settle(Foot& foot, int k, double dt, const Wrench& desir
   const bool at_a_step = std::abs(foot.ground - feet_[1 - k].ground) > kStepForRoll;
   if (!params_.tilt_search_roll || !at_a_step) error.y() = 0.0;
   foot.cop_error += dt / (params_.cop_filter_time + dt) * (error - foot.cop_error);
+  // A turn once started goes on until the error along it is well inside the band: stopping at the
+  // band's edge leaves the sole as unsupported as it was when the turn began.
   const bool started = !foot.search_direction.isZero();
+  const double band = started ? kBandToStop * params_.cop_band : params_.cop_band;
+  const double error_along = started ? foot.cop_error.dot(foot.search_direction) : foot.cop_error.norm();
+  if (error_along < -band) {
+    foot.settling = false;  // a reversal: no further search in this stance
+    return;
+  }
+  if (error_along <= band) {
+    // Found, once the load has come over to this foot (the other one has left the ground, or the
+    // plan no longer shifts load to it, as when standing after the last step): the tilt holds for
+    // this stance.
+    if (!loading) foot.settling = false;
+    return;
+  }
   if (!started) {
-    if (foot.cop_error.norm() <= params_.cop_band) {
-      // Found, once the load has come over to this foot (the other one has left the ground, or the
-      // plan no longer shifts load to it, as when standing after the last step): the tilt holds
-      // for this stance.
-      if (!loading) foot.settling = false;
-      return;
-    }
     // Turning starts about the present centre of pressure: the edge of the support the sole has.
     foot.search_direction = foot.cop_error.normalized();
     foot.pivot = Eigen::Vector2d(std::clamp(cop.x(), heel_x_[k], toe_x_[k]), std::clamp(cop.y(), right_y_[k], left_y_[k]));
-  } else {
-    // A turn once started goes on until the error along it is well inside the band: stopping at
-    // the band's edge leaves the sole as unsupported as it was when the turn began.
-    const double along = foot.cop_error.dot(foot.search_direction);
-    if (along < -kBandToStop * params_.cop_band) {
-      foot.settling = false;  // a reversal: no further search in this stance
-      return;
-    }
-    if (along <= kBandToStop * params_.cop_band) {
-      if (!loading) foot.settling = false;
-      return;
-    }
   }
   // Lowering the sole along d (x, y): pitch toes down by d_x, roll (left edge up) by −d_y.
   const Eigen::Vector2d turn(-foot.search_direction.y(), foot.search_direction.x());
