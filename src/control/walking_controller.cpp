@@ -352,6 +352,7 @@ void WalkingController::publish_status() {
   for (int k = 0; k < 2; ++k) {
     status_.foot_height_offset[k] = terrain_.foot_offset(k);
     status_.foot_tilt[k] = terrain_.foot_tilt(k);
+    status_.foot_roll[k] = terrain_.foot_roll(k);
   }
   for (int i = 0; i < plan_.num_planned_steps(); ++i) {
     const Footstep& f = plan_.planned_step(i);

@@ -43,6 +43,7 @@ struct ControllerStatus {
   bool com_estimate_valid = false;
   std::array<double, 2> foot_height_offset{};  // [m] terrain adaptation's offset of each foot's planned height
   std::array<double, 2> foot_tilt{};           // [rad] terrain adaptation's tilt of each foot (toes down)
+  std::array<double, 2> foot_roll{};           // [rad] terrain adaptation's roll of each foot (left edge up)
   // [rad] the upper body's tilt against gravity (sagittal, lateral) as the controller uses it: the
   // IMU's after the sensor calibration.
   std::array<double, 2> upper_body_tilt{};

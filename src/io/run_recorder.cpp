@@ -69,6 +69,10 @@ RunRecorder::RunRecorder(const Simulation& sim, std::ostream* csv) : csv_(csv) {
   o << ",imu_phi_x_deg,imu_phi_y_deg";
   o << ",dcm_error_x,dcm_error_y,landing_shift_x,landing_shift_y";
   o << ",est_phi_x_deg,est_phi_y_deg,lean_x_deg,lean_y_deg";
+  for (Side side : kSides) {
+    const std::string p = name_of(side);
+    o << ',' << p << "_foot_y," << p << "_foot_roll_deg," << p << "_terrain_roll_deg";
+  }
   for (int i = 0; i < sim.plant().mj()->nq; ++i) o << ",qpos_" << i;
   o << '\n';
 }
@@ -141,6 +145,15 @@ void RunRecorder::record(const Simulation& sim, const SensorData& sensors, const
   row.comma().fixed(status.upper_body_tilt[0] * kRadToDeg, 4).comma().fixed(status.upper_body_tilt[1] * kRadToDeg, 4);
   // The upper body's planned lean (hip strategy), sagittal and lateral as the tilts.
   row.comma().fixed(status.upper_body_lean.x() * kRadToDeg, 4).comma().fixed(status.upper_body_lean.y() * kRadToDeg, 4);
+  // The foot across the path (sensor frame, ground truth; roll positive with the left edge up) and
+  // the terrain adaptation's roll of it: with the pitch columns above, an edge crossed at an angle.
+  for (Side side : kSides) {
+    const FootInfo& foot = sim.plant().foot(side);
+    const Eigen::Matrix3d R = math::mat_from_mujoco(d->site_xmat + 9 * foot.sensor_site);
+    const double roll = std::atan2(R(2, 1), R(2, 2));
+    row.comma().fixed(d->site_xpos[3 * foot.sensor_site + 1], 5).comma().fixed(roll * kRadToDeg, 3);
+    row.comma().fixed(status.foot_roll[index_of(side)] * kRadToDeg, 3);
+  }
   for (int i = 0; i < m->nq; ++i) row.comma().general(d->qpos[i], 7);
   row_ += '\n';
   *csv_ << row_;

@@ -16,11 +16,15 @@
 #include "control/walking_controller.hpp"
 #include "io/robot_config.hpp"
 #include "io/scenario.hpp"
+#include "math/rotations.hpp"
+#include "math/side.hpp"
 #include "model/kinematics.hpp"
 #include "test_support.hpp"
 
 namespace biped {
 namespace {
+
+constexpr double kRadToDeg = 180.0 / M_PI;
 
 // Feeds the loop's calls to two recorders: one writing the CSV, one gathering figures only.
 struct Both final : public RunObserver {
@@ -153,6 +157,54 @@ TEST(RunRecorder, BaseAndComColumnsFollowFromTheLoggedQpos) {
       EXPECT_NEAR(log.at(r, std::string("com_") + axes[a]), com[a], one_step) << "row " << r;
     }
   }
+}
+
+// Each foot's columns are its F/T sensor frame as the logged generalized position places it (one
+// physics step apart, as above: the swing foot peaks at about 3.5 m/s, so 5 mm and 0.5°).
+TEST(RunRecorder, FootColumnsFollowFromTheLoggedQpos) {
+  const double one_step = 5.0 * 0.001, one_step_deg = 0.5;
+  const Log log = parse(walk().csv.str());
+  const mjModel* m = walk().sim.plant().mj();
+  mjData* d = mj_makeData(m);
+  const int first_qpos = log.column.at("qpos_0");
+  double largest_roll = 0.0;
+  for (std::size_t r = 0; r < log.rows.size(); r += 7) {
+    for (int i = 0; i < m->nq; ++i) d->qpos[i] = std::stod(log.rows[r][first_qpos + i]);
+    mj_kinematics(m, d);
+    for (Side side : kSides) {
+      const std::string p = name_of(side);
+      const int site = walk().sim.plant().foot(side).sensor_site;
+      const Eigen::Matrix3d R = math::mat_from_mujoco(d->site_xmat + 9 * site);
+      const Eigen::Vector3d forward = R.col(0), left = R.col(1);
+      EXPECT_NEAR(log.at(r, p + "_foot_x"), d->site_xpos[3 * site], one_step) << p << " row " << r;
+      EXPECT_NEAR(log.at(r, p + "_foot_y"), d->site_xpos[3 * site + 1], one_step) << p << " row " << r;
+      EXPECT_NEAR(log.at(r, p + "_foot_z"), d->site_xpos[3 * site + 2], one_step) << p << " row " << r;
+      // Toes down and the left edge up, as the axes' heights give them.
+      EXPECT_NEAR(log.at(r, p + "_foot_pitch_deg"), std::asin(-forward.z()) * kRadToDeg, one_step_deg) << p;
+      const double roll = std::asin(left.z() / std::cos(std::asin(-forward.z())));
+      EXPECT_NEAR(log.at(r, p + "_foot_roll_deg"), roll * kRadToDeg, one_step_deg) << p << " row " << r;
+      largest_roll = std::max(largest_roll, std::abs(roll));
+      EXPECT_EQ(log.at(r, p + "_terrain_roll_deg"), 0.0) << "level ground: no roll taken";
+    }
+  }
+  mj_deleteData(d);
+  // Rolls beyond the tolerance's half: a roll of the wrong sign would be caught.
+  EXPECT_GT(largest_roll * kRadToDeg, 0.3) << "the feet rolled a little while walking";
+}
+
+// The terrain adaptation's roll of each foot is the controller's, by side.
+TEST(RunRecorder, TerrainRollColumnsAreTheControllersByFoot) {
+  std::ostringstream csv;
+  RunRecorder recorder(walk().sim, &csv);
+  ControllerStatus status;
+  status.foot_roll = {0.1, -0.2};
+  recorder.record(walk().sim, SensorData{}, JointCommand{}, status, 0.0);
+  const Log log = parse(csv.str());
+  ASSERT_EQ(log.rows.size(), 1u);
+  EXPECT_NEAR(log.at(0, std::string(name_of(Side::Left)) + "_terrain_roll_deg"),
+              status.foot_roll[index_of(Side::Left)] * kRadToDeg, 1e-3);
+  EXPECT_NEAR(log.at(0, std::string(name_of(Side::Right)) + "_terrain_roll_deg"),
+              status.foot_roll[index_of(Side::Right)] * kRadToDeg, 1e-3);
 }
 
 TEST(RunRecorder, DistanceAndTiltRmsFollowFromTheLoggedRows) {
