@@ -131,7 +131,7 @@ void RunRecorder::record(const Simulation& sim, const SensorData& sensors, const
     const FootInfo& foot = sim.plant().foot(side);
     const double* site = d->site_xpos + 3 * foot.sensor_site;
     const Eigen::Matrix3d R = math::mat_from_mujoco(d->site_xmat + 9 * foot.sensor_site);
-    const double pitch = std::atan2(-R(2, 0), R(0, 0));
+    const double pitch = std::atan2(-R(2, 0), std::hypot(R(0, 0), R(1, 0)));  // at any heading
     row.comma().fixed(site[0], 5).comma().fixed(site[2], 5).comma().fixed(pitch * kRadToDeg, 3);
     row.comma().fixed(status.foot_height_offset[index_of(side)], 5);
     row.comma().fixed(status.foot_tilt[index_of(side)] * kRadToDeg, 3);
