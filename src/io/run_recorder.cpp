@@ -48,6 +48,16 @@ double percentile(std::vector<double> v, double p) {
   return v[k];
 }
 
+// A foot's F/T sensor frame against the horizontal, at any heading [rad]: pitch positive toes down,
+// roll positive with its left edge up.
+struct SensorFrameTilt {
+  double pitch = 0.0, roll = 0.0;
+};
+SensorFrameTilt sensor_frame_tilt(const mjData* d, int site) {
+  const Eigen::Matrix3d R = math::mat_from_mujoco(d->site_xmat + 9 * site);
+  return {std::atan2(-R(2, 0), std::hypot(R(0, 0), R(1, 0))), std::atan2(R(2, 1), R(2, 2))};
+}
+
 }  // namespace
 
 RunRecorder::RunRecorder(const Simulation& sim, std::ostream* csv) : csv_(csv) {
@@ -130,8 +140,7 @@ void RunRecorder::record(const Simulation& sim, const SensorData& sensors, const
   for (Side side : kSides) {
     const FootInfo& foot = sim.plant().foot(side);
     const double* site = d->site_xpos + 3 * foot.sensor_site;
-    const Eigen::Matrix3d R = math::mat_from_mujoco(d->site_xmat + 9 * foot.sensor_site);
-    const double pitch = std::atan2(-R(2, 0), std::hypot(R(0, 0), R(1, 0)));  // at any heading
+    const double pitch = sensor_frame_tilt(d, foot.sensor_site).pitch;
     row.comma().fixed(site[0], 5).comma().fixed(site[2], 5).comma().fixed(pitch * kRadToDeg, 3);
     row.comma().fixed(status.foot_height_offset[index_of(side)], 5);
     row.comma().fixed(status.foot_tilt[index_of(side)] * kRadToDeg, 3);
@@ -145,12 +154,11 @@ void RunRecorder::record(const Simulation& sim, const SensorData& sensors, const
   row.comma().fixed(status.upper_body_tilt[0] * kRadToDeg, 4).comma().fixed(status.upper_body_tilt[1] * kRadToDeg, 4);
   // The upper body's planned lean (hip strategy), sagittal and lateral as the tilts.
   row.comma().fixed(status.upper_body_lean.x() * kRadToDeg, 4).comma().fixed(status.upper_body_lean.y() * kRadToDeg, 4);
-  // The foot across the path (sensor frame, ground truth; roll positive with the left edge up) and
-  // the terrain adaptation's roll of it: with the pitch columns above, an edge crossed at an angle.
+  // The foot across the path (sensor frame, ground truth) and the terrain adaptation's roll of it:
+  // with the pitch columns above, an edge crossed at an angle.
   for (Side side : kSides) {
     const FootInfo& foot = sim.plant().foot(side);
-    const Eigen::Matrix3d R = math::mat_from_mujoco(d->site_xmat + 9 * foot.sensor_site);
-    const double roll = std::atan2(R(2, 1), R(2, 2));
+    const double roll = sensor_frame_tilt(d, foot.sensor_site).roll;
     row.comma().fixed(d->site_xpos[3 * foot.sensor_site + 1], 5).comma().fixed(roll * kRadToDeg, 3);
     row.comma().fixed(status.foot_roll[index_of(side)] * kRadToDeg, 3);
   }
