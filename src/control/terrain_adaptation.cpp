@@ -62,6 +62,7 @@ void TerrainAdaptation::settle(Foot& foot, int k, double dt, const Wrench& desir
   foot.tilt_rate.setZero();
   if (!foot.settling) return;
   if (foot.filtered_force <= params_.contact_force || desired.force.z() <= params_.contact_force) return;
+  foot.settle_time += dt;
   // Sensor frame: T_x = y_CoP F_z, T_y = −x_CoP F_z. The error is filtered: landing on flat ground
   // moves the centre of pressure for a few tens of milliseconds, a missing support keeps it away.
   const Eigen::Vector2d cop(-foot.filtered_torque / foot.filtered_force, foot.filtered_roll_torque / foot.filtered_force);
@@ -84,8 +85,13 @@ void TerrainAdaptation::settle(Foot& foot, int k, double dt, const Wrench& desir
   if (error_along <= band) {
     // Found, once the load has come over to this foot (the other one has left the ground, or the
     // plan no longer shifts load to it, as when standing after the last step): the tilt holds for
-    // this stance.
-    if (!loading) foot.settling = false;
+    // this stance. A foot landing on time takes load only as the plan shifts it, so the filtered
+    // error has built by then; one that met a step's top early is loaded from the plan's first
+    // cycle of contact, when the plan's share has not risen yet, and ended its settling there with
+    // its sole on the edge (JOHNNIE, steps up crossed at an angle: no turn at all). It waits for
+    // the filter.
+    const bool filled = !foot.met_early || foot.settle_time >= kFilterFill * params_.cop_filter_time;
+    if (!loading && filled) foot.settling = false;
     return;
   }
   if (!started) {
@@ -201,6 +207,7 @@ void TerrainAdaptation::step(double dt, const PatternSample& s, const std::array
     if (!plan.in_contact) {
       if (foot.phase == Phase::Stance) foot.phase = Phase::Swing;
       foot.settling = true;
+      foot.settle_time = 0.0;
       foot.search_direction.setZero();
       foot.cop_error.setZero();
       return_tilt(foot, dt);
@@ -234,6 +241,7 @@ void TerrainAdaptation::step(double dt, const PatternSample& s, const std::array
       // A foot that met the ground early but lost it again by the planned touchdown (it brushed
       // the ground) searches like one that met none.
       if (foot.phase == Phase::Swing || foot.phase == Phase::Latched) {
+        foot.met_early = foot.phase == Phase::Latched && contact;
         foot.phase = contact ? Phase::Stance : Phase::Searching;
         foot.search_time = 0.0;
         foot.measuring = true;

@@ -172,6 +172,10 @@ class TerrainAdaptation {
     double planned_ground = 0.0;  // the plan's height of this foot standing (its swing clearance is above it)
     double filtered_torque = 0.0;  // T_y, filtered like the force
     bool settling = false;         // from touchdown until the sole has found its support
+    // The foot met the ground before its planned touchdown (latched), so it was loaded from the
+    // plan's first cycle of contact; and the time of this stance's settling with the sole loaded [s].
+    bool met_early = false;
+    double settle_time = 0.0;
     // The partial support's turn (roll, pitch) [rad] and its rate [rad/s], about `pivot`, the
     // (x, y) of the centre of pressure where it began (sensor frame) [m].
     Eigen::Vector2d tilt = Eigen::Vector2d::Zero(), tilt_rate = Eigen::Vector2d::Zero();
@@ -219,6 +223,9 @@ class TerrainAdaptation {
   static constexpr double kSwingSpeed = 0.5;  // [m/s] a swinging foot's offset moves to its target at most this fast
 
   static constexpr double kBandToStop = 0.5;  // share of cop_band inside which a started turn stops
+  // After an early contact, a support is taken as found only after this many cop_filter_time of
+  // loaded settling: the filtered CoP error starts from zero at each touchdown.
+  static constexpr double kFilterFill = 2.0;
   // [m] the footholds' heights differ by more than this: a sole may straddle an edge, and the
   // partial support's turn may roll it (tilt_search_roll)
   static constexpr double kStepForRoll = 0.01;

@@ -302,6 +302,37 @@ TEST(TerrainAdaptation, PartialSupportTurnsTheFootAboutItsCentreOfPressure) {
   }
 }
 
+// A foot whose toe met a step's top early (latched, loaded before the planned touchdown) with its
+// heel over the lower level: at the planned touchdown its centre of pressure sits at the edge under
+// the sole, 8 cm ahead of the desired one, from the first cycle, in which the plan's load share has
+// not risen yet. The search must not end before its filtered error has built: the sole turns heel
+// down about the edge. A foot fully on the step (the CoP where desired) does not turn.
+TEST(TerrainAdaptation, AFootThatMetAStepTopEarlyStillTurnsOntoItsSupport) {
+  const RobotModel model = test::load_model("lola");
+  for (bool supported : {true, false}) {
+    TerrainAdaptation terrain(model, TerrainAdaptationParams{});
+    LeftFootDescending left;
+    left.descend(terrain, 50, -10.0, 600.0);
+    left.descend(terrain, 20, 200.0, 400.0);  // the toe on the step: latched
+    Wrench desired;
+    desired.force.z() = 300.0;
+    std::array<Wrench, 2> measured = loads(300.0, 300.0);
+    measured[0].torque.y() = supported ? 0.0 : -0.08 * 300.0;  // T_y = −x_CoP F_z: the CoP 8 cm ahead
+    left.sample.feet[0].in_contact = true;
+    left.sample.feet[0].velocity.z() = 0.0;
+    left.sample.load_share = {0.0, 1.0};
+    for (int i = 0; i < 100; ++i) {
+      if (i > 0) left.sample.load_share = {0.005 * i, 1.0 - 0.005 * i};
+      terrain.step(kDt, left.sample, measured, {desired, desired});
+    }
+    if (supported) {
+      EXPECT_DOUBLE_EQ(terrain.foot_tilt(0), 0.0);
+    } else {
+      EXPECT_LT(terrain.foot_tilt(0), -0.02) << "heel down about the edge";
+    }
+  }
+}
+
 // A foot landing across an edge crossed at an angle, 2 cm above the other foot: its supported part
 // lies behind and to the left, the desired centre of pressure ahead and to the right. The turn
 // lowers the sole towards the desired one (toes down and its right edge down, in the proportion of
