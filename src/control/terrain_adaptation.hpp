@@ -86,6 +86,13 @@ struct TerrainAdaptationParams {
   // Elsewhere (level or uphill) the swing foot still takes that slope's roll about its own forward
   // axis (a side slope), not its pitch or height.
   bool take_side_slope = true;
+  // ... and where the downhill prediction does not act (`predict_slope` off) while the swing foot
+  // lands lower than the stance foot, it aims at the drop the side slope alone gives over the feet's
+  // distance sideways (not the pitch's), where that side slope is steeper than 1.5 × min_slope or
+  // the foot's last foothold lay lower than the stance foot's already: the foot on the downhill side
+  // otherwise lands late every step, and the robot rolls downhill while it searches (JVRC-1,
+  // docs/stabilizer.md "Side slopes").
+  bool side_slope_height = true;
   double min_slope = 0.02;        // [rad] shallower slopes are taken for level ground
   double max_slope = 0.1;         // [rad] bound of that slope
   // [m] the slope is taken if the height it gives between the last two footholds is within this

@@ -302,6 +302,8 @@ const ParameterTable<TerrainAdaptationParams> kTerrainAdaptationParameters = {
      "downhill: the swing foot takes the slope the stance foot stands on"},
     {"take_side_slope", &TerrainAdaptationParams::take_side_slope, "", {},
      "not downhill: the swing foot still rolls to the side slope the stance foot stands on"},
+    {"side_slope_height", &TerrainAdaptationParams::side_slope_height, "", {},
+     "without the downhill prediction: a foot landing lower aims at the drop the side slope gives sideways"},
     {"min_slope", &TerrainAdaptationParams::min_slope, "rad", kNonNegative, "downhill: shallower slopes are taken for level ground"},
     {"max_slope", &TerrainAdaptationParams::max_slope, "rad", kPositive, "downhill: bound of that slope"},
     {"slope_tolerance", &TerrainAdaptationParams::slope_tolerance, "m", kPositive,
