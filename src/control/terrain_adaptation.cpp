@@ -164,7 +164,7 @@ void TerrainAdaptation::take_slope(Foot& foot, const Foot& stance, const FootRef
     // JVRC-1's footholds 3 cm down in 20 s.
     const double side_descent = gradient.dot(left) * (plan.position.head<2>() - stance.position).dot(left);
     const bool lower_before = stance.ground - foot.ground > params_.slope_tolerance;
-    const bool steep = std::abs(gradient.dot(left)) > std::tan(1.5 * params_.min_slope);
+    const bool steep = std::abs(gradient.dot(left)) > std::tan(kSteepSideSlope * params_.min_slope);
     if (params_.side_slope_height && descent < 0.0 && side_descent < 0.0 && (lower_before || steep)) {
       target += std::max(descent, side_descent);
     }

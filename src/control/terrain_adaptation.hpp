@@ -31,7 +31,9 @@
 //    few steps.) Elsewhere (level ground ahead, or uphill) the swing foot still rolls to that
 //    slope's sideways part, where the footholds' heights agree with it: landing level on a side
 //    slope, its uphill edge touched first and the centre of pressure held there pushed the CoM
-//    downhill at every touchdown.
+//    downhill at every touchdown. Without the downhill prediction, a foot landing lower than the
+//    stance foot also aims at the drop that sideways part gives (the downhill side's foot landed
+//    late at every step).
 // The outputs are height offsets added to the feet's and the CoM's planned heights, and tilts added
 // to the feet's planned orientations in eq. (21); force control (eq. 20) acts on top of them.
 #include <array>
@@ -219,6 +221,9 @@ class TerrainAdaptation {
   // A centre of pressure this far inside the sole's edges means the sole lies flat [m].
   static constexpr double kFlatSoleMargin = 0.02;
   static constexpr double kSlopeAgreement = 0.5;  // share of the slope's height the footholds' heights may lag
+  // A side slope this many times min_slope is one, not force control's turn on level ground (about
+  // a degree): its drop is aimed at before the footholds show it.
+  static constexpr double kSteepSideSlope = 1.5;
   // A foot without a trusted F/T reading: see step(). `other_trusted`: the other foot's is.
   void follow_plan(Foot& foot, const Foot& other, const FootReference& plan, double ground_above_command, double dt,
                    bool other_trusted);
