@@ -157,14 +157,15 @@ void TerrainAdaptation::take_slope(Foot& foot, const Foot& stance, const FootRef
     // Not descending, the foot still rolls to the ground's side slope: landing level on it, its
     // uphill edge would touch first, the centre of pressure held there pushing the CoM downhill at
     // every touchdown, and no search turns a sole about its long axis.
-    goal.x() = std::atan(gradient.dot(left));
+    const double side_gradient = gradient.dot(left);
+    goal.x() = std::atan(side_gradient);
     // Only on a side slope clearly steeper than the least one taken, or where this foot's last
     // foothold lay lower than the stance foot's by more than the tolerance already: on level ground
     // force control's turn reads as slopes of about a degree, and aiming lower by them walked
     // JVRC-1's footholds 3 cm down in 20 s.
-    const double side_descent = gradient.dot(left) * (plan.position.head<2>() - stance.position).dot(left);
+    const double side_descent = side_gradient * (plan.position.head<2>() - stance.position).dot(left);
     const bool lower_before = stance.ground - foot.ground > params_.slope_tolerance;
-    const bool steep = std::abs(gradient.dot(left)) > std::tan(kSteepSideSlope * params_.min_slope);
+    const bool steep = std::abs(side_gradient) > std::tan(kSteepSideSlope * params_.min_slope);
     if (params_.side_slope_height && descent < 0.0 && side_descent < 0.0 && (lower_before || steep)) {
       target += std::max(descent, side_descent);
     }
